@@ -1,0 +1,29 @@
+#pragma once
+// What a case will cost before it runs: particle counts per kind, the time step from
+// Fuchs 2021 eq. (41) at rest, step count and memory. Used by `sphctl submit --dry-run`,
+// the server's size limit, and progress ETA before the first step.
+#include <cstdint>
+#include <string>
+
+#include "sph/v1/case.pb.h"
+
+namespace sph {
+
+struct CaseEstimate {
+  double fluid_particles = 0;
+  double wall_particles = 0;
+  double rigid_particles = 0;
+  double total() const { return fluid_particles + wall_particles + rigid_particles; }
+  double initial_dt = 0;       // [s]
+  double steps = 0;            // end_time / initial_dt (adaptive runs may differ)
+  double bytes = 0;            // particle storage + neighbour lists, all ranks
+  std::string dt_limited_by;   // which criterion of eq. (41) is the smallest
+};
+
+// Requires a case that passed the structural checks of validate_case (shapes compile).
+CaseEstimate estimate_case(const v1::Case& c);
+
+// Cut-off radius over smoothing length for the case's kernel.
+double kernel_support_factor(const v1::Case& c);
+
+}  // namespace sph

@@ -1,0 +1,32 @@
+#pragma once
+// Reading a case from .textproto text or file. Point files referenced by PointSet.file are
+// read and inlined here, so the returned case stands alone (it is what gets submitted).
+#include <stdexcept>
+#include <string>
+
+#include "sph/v1/case.pb.h"
+
+namespace sph {
+
+// Thrown for text that does not parse or a point file that cannot be read; what() names the
+// line and column or the field path.
+class CaseLoadError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Parses textproto text. Unknown fields and malformed values are errors.
+v1::Case parse_case_text(const std::string& text);
+
+// Replaces every PointSet.file (relative to base_dir) by its points.
+void inline_point_files(v1::Case& c, const std::string& base_dir);
+
+// parse_case_text + inline_point_files relative to the file's directory.
+v1::Case load_case_file(const std::string& path);
+
+// The canonical text form of a case (what is stored and written into result metadata).
+std::string case_to_text(const v1::Case& c);
+
+std::string read_text_file(const std::string& path);
+
+}  // namespace sph

@@ -1,0 +1,41 @@
+#include "case/materials.h"
+
+#include <cmath>
+
+namespace sph {
+
+std::vector<MaterialParams> resolve_materials(const v1::Case& c) {
+  std::vector<MaterialParams> out;
+  for (const auto& m : c.materials()) {
+    MaterialParams p;
+    p.name = m.name();
+    p.fluid = m.phase() != v1::SOLID;
+    p.rho0 = m.density();
+    if (p.fluid) {
+      const auto& e = m.eos();
+      p.tait = e.kind() == v1::TAIT;
+      p.gamma = p.tait ? (e.has_gamma() ? e.gamma() : 7.0) : 1.0;
+      if (e.has_sound_speed()) {
+        p.c = e.sound_speed();
+        p.p0 = p.rho0 * p.c * p.c / p.gamma;  // Adami 2012 eq. 4; Fuchs 2021 eq. 18 for gamma = 1
+      } else {
+        p.p0 = e.reference_pressure();
+        p.c = std::sqrt(p.gamma * p.p0 / p.rho0);
+      }
+      p.chi = e.background_pressure();
+      if (m.has_dynamic_viscosity()) p.eta = m.dynamic_viscosity();
+      if (m.has_kinematic_viscosity()) p.eta = m.kinematic_viscosity() * p.rho0;
+      p.pb = m.has_transport_background_pressure() ? m.transport_background_pressure() : p.p0;
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+int material_index(const std::vector<MaterialParams>& m, const std::string& name) {
+  for (size_t i = 0; i < m.size(); ++i)
+    if (m[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+}  // namespace sph

@@ -1,0 +1,387 @@
+#include "case/validate.h"
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "case/estimate.h"
+
+namespace sph {
+namespace {
+
+std::string idx(const std::string& base, int i) { return base + "[" + std::to_string(i) + "]"; }
+std::string cat(const std::string& base, const std::string& f) {
+  return base.empty() ? f : base + "." + f;
+}
+bool finite(double v) { return std::isfinite(v); }
+
+class Validator {
+ public:
+  Validator(const v1::Case& c, const ValidationLimits& limits) : c_(c), limits_(limits) {}
+
+  std::vector<FieldError> run() {
+    top_level();
+    if (dim_ok_) {
+      materials();
+      for (int i = 0; i < c_.fluids_size(); ++i) fluid(c_.fluids(i), idx("fluids", i));
+      for (int i = 0; i < c_.walls_size(); ++i) wall(c_.walls(i), idx("walls", i));
+      for (int i = 0; i < c_.bodies_size(); ++i) body(c_.bodies(i), idx("bodies", i));
+      not_implemented();
+      numerics();
+      probes();
+      size_limit();
+    }
+    return std::move(errors_);
+  }
+
+ private:
+  void error(const std::string& field, const std::string& msg) { errors_.push_back({field, msg}); }
+
+  void positive(double v, const std::string& field, const std::string& what = "must be > 0") {
+    if (!finite(v) || v <= 0) error(field, what + " (got " + num(v) + ")");
+  }
+  void non_negative(double v, const std::string& field) {
+    if (!finite(v) || v < 0) error(field, "must be >= 0 (got " + num(v) + ")");
+  }
+  static std::string num(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+  }
+
+  void vec(const v1::Vec3& v, const std::string& field) {
+    if (!finite(v.x()) || !finite(v.y()) || !finite(v.z())) error(field, "must be finite");
+    if (c_.dimension() == 2 && v.z() != 0.0)
+      error(cat(field, "z"), "must be 0 in a 2D case (got " + num(v.z()) + ")");
+  }
+
+  void top_level() {
+    if (c_.dimension() != 2 && c_.dimension() != 3) {
+      error("dimension", "must be 2 or 3 (got " + std::to_string(c_.dimension()) + ")");
+      dim_ok_ = false;
+      return;
+    }
+    positive(c_.dx(), "dx");
+    if (!c_.has_domain()) {
+      error("domain", "is required (the bounding box of the computational domain)");
+    } else {
+      vec(c_.domain().lo(), "domain.lo");
+      vec(c_.domain().hi(), "domain.hi");
+      const char* axes = "xyz";
+      for (int a = 0; a < c_.dimension(); ++a) {
+        const double lo = a == 0 ? c_.domain().lo().x() : a == 1 ? c_.domain().lo().y() : c_.domain().lo().z();
+        const double hi = a == 0 ? c_.domain().hi().x() : a == 1 ? c_.domain().hi().y() : c_.domain().hi().z();
+        if (!(hi > lo))
+          error(std::string("domain.hi.") + axes[a],
+                "must be greater than domain.lo." + std::string(1, axes[a]));
+        else if (c_.dx() > 0 && (hi - lo) < 2 * kernel_support_factor(c_) * c_.dx())
+          error(std::string("domain.hi.") + axes[a],
+                "domain is narrower than two kernel supports along " + std::string(1, axes[a]));
+      }
+    }
+    if (c_.dimension() == 2 && c_.periodic_z()) error("periodic_z", "not allowed in a 2D case");
+    vec(c_.lattice_origin(), "lattice_origin");
+    if (c_.fluids_size() == 0 && c_.bodies_size() == 0)
+      error("fluids", "a case needs at least one fluid region or rigid body");
+  }
+
+  void materials() {
+    for (int i = 0; i < c_.materials_size(); ++i) {
+      const auto& m = c_.materials(i);
+      const std::string f = idx("materials", i);
+      if (m.name().empty()) error(cat(f, "name"), "must not be empty");
+      else if (!names_.insert(m.name()).second)
+        error(cat(f, "name"), "duplicate material name '" + m.name() + "'");
+      phase_[m.name()] = m.phase() == v1::SOLID ? v1::SOLID : v1::FLUID;
+      positive(m.density(), cat(f, "density"));
+      if (m.phase() != v1::SOLID) {
+        const auto& e = m.eos();
+        const std::string ef = cat(f, "eos");
+        if (e.has_sound_speed() == e.has_reference_pressure())
+          error(ef, "give exactly one of sound_speed and reference_pressure");
+        if (e.has_sound_speed()) positive(e.sound_speed(), cat(ef, "sound_speed"));
+        if (e.has_reference_pressure()) positive(e.reference_pressure(), cat(ef, "reference_pressure"));
+        if (e.has_gamma()) {
+          positive(e.gamma(), cat(ef, "gamma"));
+          if (e.kind() != v1::TAIT) error(cat(ef, "gamma"), "only used with kind: TAIT");
+        }
+        if (!finite(e.background_pressure())) error(cat(ef, "background_pressure"), "must be finite");
+        if (m.has_dynamic_viscosity() && m.has_kinematic_viscosity())
+          error(f, "give at most one of dynamic_viscosity and kinematic_viscosity");
+        if (m.has_dynamic_viscosity()) non_negative(m.dynamic_viscosity(), cat(f, "dynamic_viscosity"));
+        if (m.has_kinematic_viscosity()) non_negative(m.kinematic_viscosity(), cat(f, "kinematic_viscosity"));
+        if (m.has_transport_background_pressure()) {
+          non_negative(m.transport_background_pressure(), cat(f, "transport_background_pressure"));
+          if (!c_.fluid_model().transport_velocity())
+            error(cat(f, "transport_background_pressure"),
+                  "set, but fluid_model.transport_velocity is not enabled");
+        }
+      } else if (m.has_eos()) {
+        error(cat(f, "eos"), "a SOLID material has no equation of state");
+      }
+      for (auto [has, name] : {std::pair{m.has_heat_capacity(), "heat_capacity"},
+                               std::pair{m.has_thermal_conductivity(), "thermal_conductivity"},
+                               std::pair{m.has_diffusivity(), "diffusivity"}}) {
+        if (has) error(cat(f, name), "not implemented yet: heat conduction and concentration diffusion");
+      }
+      if (m.fixed_concentration())
+        error(cat(f, "fixed_concentration"), "not implemented yet: concentration diffusion");
+    }
+  }
+
+  void material_ref(const std::string& name, v1::MaterialPhase want, const std::string& field,
+                    bool required) {
+    if (name.empty()) {
+      if (required) error(field, "is required");
+      return;
+    }
+    auto it = phase_.find(name);
+    if (it == phase_.end()) {
+      std::string known;
+      for (const auto& n : names_) known += (known.empty() ? "" : ", ") + n;
+      error(field, "unknown material '" + name + "' (defined: " + (known.empty() ? "none" : known) + ")");
+    } else if (it->second != want) {
+      error(field, "material '" + name + "' is " + (it->second == v1::SOLID ? "SOLID" : "FLUID") +
+                       ", expected " + (want == v1::SOLID ? "SOLID" : "FLUID"));
+    }
+  }
+
+  void shape(const v1::Shape& s, const std::string& f, bool top) {
+    const int d = c_.dimension();
+    switch (s.kind_case()) {
+      case v1::Shape::KIND_NOT_SET:
+        error(f, "shape has no kind (box, ball, cylinder, polygon, polar_curve, points, union, "
+                 "intersection, difference or shell)");
+        break;
+      case v1::Shape::kBox: {
+        vec(s.box().lo(), cat(f, "box.lo"));
+        vec(s.box().hi(), cat(f, "box.hi"));
+        const double lo[3] = {s.box().lo().x(), s.box().lo().y(), s.box().lo().z()};
+        const double hi[3] = {s.box().hi().x(), s.box().hi().y(), s.box().hi().z()};
+        for (int a = 0; a < d; ++a)
+          if (!(hi[a] > lo[a]))
+            error(cat(f, std::string("box.hi.") + "xyz"[a]), "must be greater than box.lo");
+        break;
+      }
+      case v1::Shape::kBall:
+        vec(s.ball().center(), cat(f, "ball.center"));
+        positive(s.ball().radius(), cat(f, "ball.radius"));
+        break;
+      case v1::Shape::kCylinder:
+        if (d != 3) error(cat(f, "cylinder"), "only in 3D cases (use ball or box in 2D)");
+        vec(s.cylinder().base(), cat(f, "cylinder.base"));
+        vec(s.cylinder().axis(), cat(f, "cylinder.axis"));
+        positive(s.cylinder().radius(), cat(f, "cylinder.radius"));
+        positive(s.cylinder().length(), cat(f, "cylinder.length"));
+        if (s.cylinder().axis().x() == 0 && s.cylinder().axis().y() == 0 && s.cylinder().axis().z() == 0)
+          error(cat(f, "cylinder.axis"), "must not be zero");
+        break;
+      case v1::Shape::kPolygon:
+        if (d != 2) error(cat(f, "polygon"), "only in 2D cases");
+        if (s.polygon().vertices_size() < 3)
+          error(cat(f, "polygon.vertices"), "needs at least 3 vertices");
+        for (int i = 0; i < s.polygon().vertices_size(); ++i)
+          vec(s.polygon().vertices(i), idx(cat(f, "polygon.vertices"), i));
+        break;
+      case v1::Shape::kPolarCurve: {
+        const auto& p = s.polar_curve();
+        if (d != 2) error(cat(f, "polar_curve"), "only in 2D cases");
+        vec(p.center(), cat(f, "polar_curve.center"));
+        positive(p.radius(), cat(f, "polar_curve.radius"));
+        if (!(std::abs(p.amplitude()) < p.radius()))
+          error(cat(f, "polar_curve.amplitude"), "|amplitude| must be less than radius");
+        if (p.periods() < 0) error(cat(f, "polar_curve.periods"), "must be >= 0");
+        break;
+      }
+      case v1::Shape::kPoints:
+        if (!top) error(cat(f, "points"), "a point set can only be a top-level shape");
+        if (!s.points().file().empty())
+          error(cat(f, "points.file"),
+                "point files must be inlined before validation (sphctl and sph-worker do this)");
+        else if (s.points().points_size() == 0)
+          error(cat(f, "points.points"), "is empty");
+        for (int i = 0; i < s.points().points_size(); ++i)
+          vec(s.points().points(i), idx(cat(f, "points.points"), i));
+        break;
+      case v1::Shape::kUnion:
+      case v1::Shape::kIntersection: {
+        const bool u = s.kind_case() == v1::Shape::kUnion;
+        const auto& l = u ? s.union_() : s.intersection();
+        const std::string lf = cat(f, u ? "union.shapes" : "intersection.shapes");
+        if (l.shapes_size() == 0) error(lf, "is empty");
+        for (int i = 0; i < l.shapes_size(); ++i) shape(l.shapes(i), idx(lf, i), false);
+        break;
+      }
+      case v1::Shape::kDifference:
+        if (!s.difference().has_base()) error(cat(f, "difference.base"), "is required");
+        else shape(s.difference().base(), cat(f, "difference.base"), false);
+        for (int i = 0; i < s.difference().subtract_size(); ++i)
+          shape(s.difference().subtract(i), idx(cat(f, "difference.subtract"), i), false);
+        break;
+      case v1::Shape::kShell:
+        if (!s.shell().has_inner()) error(cat(f, "shell.inner"), "is required");
+        else shape(s.shell().inner(), cat(f, "shell.inner"), false);
+        if (s.shell().has_thickness()) positive(s.shell().thickness(), cat(f, "shell.thickness"));
+        break;
+    }
+  }
+
+  void time_function(const v1::TimeFunction& tf, const std::string& f) {
+    switch (tf.kind_case()) {
+      case v1::TimeFunction::kConstant:
+        if (!finite(tf.constant())) error(cat(f, "constant"), "must be finite");
+        break;
+      case v1::TimeFunction::kSine:
+        if (!finite(tf.sine().amplitude()) || !finite(tf.sine().angular_frequency()) ||
+            !finite(tf.sine().offset()) || !finite(tf.sine().phase()))
+          error(cat(f, "sine"), "all parameters must be finite");
+        break;
+      case v1::TimeFunction::kPiecewiseLinear:
+      case v1::TimeFunction::kPiecewiseConstant: {
+        const bool lin = tf.kind_case() == v1::TimeFunction::kPiecewiseLinear;
+        const auto& t = lin ? tf.piecewise_linear() : tf.piecewise_constant();
+        const std::string tfld = cat(f, lin ? "piecewise_linear" : "piecewise_constant");
+        if (t.times_size() == 0) error(cat(tfld, "times"), "is empty");
+        if (t.times_size() != t.values_size())
+          error(cat(tfld, "values"), "needs as many values as times (" +
+                                         std::to_string(t.times_size()) + ")");
+        for (int i = 1; i < t.times_size(); ++i)
+          if (!(t.times(i) > t.times(i - 1)))
+            error(idx(cat(tfld, "times"), i), "times must be strictly increasing");
+        break;
+      }
+      case v1::TimeFunction::KIND_NOT_SET:
+        break;
+    }
+    non_negative(tf.start_time(), cat(f, "start_time"));
+    if (tf.end_time() != 0 && tf.end_time() <= tf.start_time())
+      error(cat(f, "end_time"), "must be greater than start_time (or 0 for never)");
+  }
+
+  void motion(const v1::Motion& m, const std::string& f) {
+    time_function(m.velocity_x(), cat(f, "velocity_x"));
+    time_function(m.velocity_y(), cat(f, "velocity_y"));
+    if (c_.dimension() == 2 && m.has_velocity_z())
+      error(cat(f, "velocity_z"), "not allowed in a 2D case");
+    time_function(m.velocity_z(), cat(f, "velocity_z"));
+    time_function(m.angular_velocity(), cat(f, "angular_velocity"));
+    vec(m.center(), cat(f, "center"));
+    vec(m.axis(), cat(f, "axis"));
+    if (c_.dimension() == 3 && m.has_angular_velocity() &&
+        m.axis().x() == 0 && m.axis().y() == 0 && m.axis().z() == 0)
+      error(cat(f, "axis"), "a 3D rotation needs a non-zero axis");
+  }
+
+  void fluid(const v1::FluidRegion& r, const std::string& f) {
+    material_ref(r.material(), v1::FLUID, cat(f, "material"), true);
+    if (!r.has_shape()) error(cat(f, "shape"), "is required");
+    else shape(r.shape(), cat(f, "shape"), true);
+    vec(r.initial_velocity(), cat(f, "initial_velocity"));
+    if (r.has_hydrostatic_surface()) {
+      if (!finite(r.hydrostatic_surface())) error(cat(f, "hydrostatic_surface"), "must be finite");
+      if (!c_.has_gravity()) error(cat(f, "hydrostatic_surface"), "needs gravity");
+    }
+    if (r.has_initial_temperature())
+      error(cat(f, "initial_temperature"), "not implemented yet: heat conduction");
+    if (r.has_initial_concentration())
+      error(cat(f, "initial_concentration"), "not implemented yet: concentration diffusion");
+  }
+
+  void wall(const v1::Wall& w, const std::string& f) {
+    if (!w.has_shape()) error(cat(f, "shape"), "is required");
+    else shape(w.shape(), cat(f, "shape"), true);
+    material_ref(w.material(), v1::SOLID, cat(f, "material"), false);
+    if (w.has_motion()) motion(w.motion(), cat(f, "motion"));
+    if (w.has_temperature())
+      error(cat(f, "temperature"), "not implemented yet: heat conduction (wall temperature schedules)");
+    if (w.has_concentration())
+      error(cat(f, "concentration"), "not implemented yet: concentration diffusion");
+  }
+
+  void body(const v1::RigidBody&, const std::string& f) {
+    error(f, "not implemented yet: rigid bodies");
+  }
+
+  void not_implemented() {
+    if (c_.has_contact()) error("contact", "not implemented yet: rigid-body contact");
+    for (int i = 0; i < c_.phase_transitions_size(); ++i)
+      error(idx("phase_transitions", i), "not implemented yet: phase transitions");
+    if (c_.has_thermal()) error("thermal", "not implemented yet: heat conduction");
+    if (c_.has_diffusion()) error("diffusion", "not implemented yet: concentration diffusion");
+    for (int i = 0; i < c_.open_boundaries_size(); ++i)
+      error(idx("open_boundaries", i), "not implemented yet: inflow/outflow boundaries");
+    if (c_.has_reference()) error("reference", "not implemented yet: convergence-study references");
+  }
+
+  void numerics() {
+    const auto& fm = c_.fluid_model();
+    non_negative(fm.artificial_viscosity(), "fluid_model.artificial_viscosity");
+    if (c_.has_gravity()) {
+      vec(c_.gravity().acceleration(), "gravity.acceleration");
+      non_negative(c_.gravity().damping_time(), "gravity.damping_time");
+    }
+    vec(c_.body_force(), "body_force");
+    const auto& t = c_.time();
+    positive(t.end_time(), "time.end_time");
+    if (t.has_cfl_factor() && (!(t.cfl_factor() > 0) || t.cfl_factor() > 2))
+      error("time.cfl_factor", "must be in (0, 2] (got " + num(t.cfl_factor()) + ")");
+    non_negative(t.fixed_dt(), "time.fixed_dt");
+    if (t.max_steps() < 0) error("time.max_steps", "must be >= 0");
+    const auto& o = c_.output();
+    non_negative(o.interval(), "output.interval");
+    non_negative(o.series_interval(), "output.series_interval");
+    non_negative(o.checkpoint_wall_interval(), "output.checkpoint_wall_interval");
+    for (int i = 0; i < o.times_size(); ++i)
+      if (!(o.times(i) >= 0) || o.times(i) > t.end_time())
+        error(idx("output.times", i), "must be within [0, time.end_time]");
+    const auto& g = c_.guards();
+    if (g.has_max_density_deviation()) positive(g.max_density_deviation(), "guards.max_density_deviation");
+    if (g.has_min_dt_fraction()) positive(g.min_dt_fraction(), "guards.min_dt_fraction");
+    if (g.has_max_mach()) positive(g.max_mach(), "guards.max_mach");
+    non_negative(c_.stop().max_wall_seconds(), "stop.max_wall_seconds");
+    non_negative(c_.stop().steady_kinetic_energy(), "stop.steady_kinetic_energy");
+  }
+
+  void probes() {
+    std::set<std::string> seen;
+    for (int i = 0; i < c_.probes_size(); ++i) {
+      const auto& p = c_.probes(i);
+      const std::string f = idx("probes", i);
+      if (p.name().empty()) error(cat(f, "name"), "must not be empty");
+      else if (!seen.insert(p.name()).second) error(cat(f, "name"), "duplicate probe name '" + p.name() + "'");
+      vec(p.position(), cat(f, "position"));
+      vec(p.line_end(), cat(f, "line_end"));
+      if (p.count() < 0 || p.count() > 10000) error(cat(f, "count"), "must be in [0, 10000]");
+    }
+  }
+
+  void size_limit() {
+    if (!errors_.empty()) return;  // shapes must be valid to estimate
+    const CaseEstimate e = estimate_case(c_);
+    if (e.total() < 1) error("fluids", "the case places no particles (check shapes against domain and dx)");
+    if (limits_.max_particles > 0 && e.total() > limits_.max_particles)
+      error("dx", "case too large: about " + num(e.total()) + " particles, the limit is " +
+                      num(limits_.max_particles) + " (increase dx or shrink the domain)");
+  }
+
+  const v1::Case& c_;
+  ValidationLimits limits_;
+  std::vector<FieldError> errors_;
+  std::set<std::string> names_;
+  std::map<std::string, v1::MaterialPhase> phase_;
+  bool dim_ok_ = true;
+};
+
+}  // namespace
+
+std::vector<FieldError> validate_case(const v1::Case& c, const ValidationLimits& limits) {
+  return Validator(c, limits).run();
+}
+
+std::string join_errors(const std::vector<FieldError>& errors) {
+  std::string s;
+  for (const auto& e : errors) s += (s.empty() ? "" : "; ") + e.to_string();
+  return s;
+}
+
+}  // namespace sph

@@ -1,0 +1,83 @@
+#pragma once
+// Smoothing kernels W(r, h) with compact support r_c = kappa h.
+//  - Quintic spline (Morris, Fox, Zhu 1997), kappa = 3: the kernel of Adami 2012 sec. 3 and
+//    Fuchs 2021 Remark 7.
+//  - Wendland C2 (Wendland 1995), kappa = 2.
+// Both are normalised to unit integral in D dimensions. dW(r) is dW/dr (<= 0).
+#include <numbers>
+
+namespace sph {
+
+template <int D>
+class QuinticSpline {
+ public:
+  static constexpr double kSupport = 3.0;
+  explicit QuinticSpline(double h) : inv_h_(1.0 / h), sigma_(norm() * ipow(1.0 / h)) {}
+  double support_radius() const { return kSupport / inv_h_; }
+  double W(double r) const {
+    const double q = r * inv_h_;
+    if (q >= 3.0) return 0.0;
+    const double a = 3.0 - q, b = 2.0 - q, c = 1.0 - q;
+    double w = a * a * a * a * a;
+    if (q < 2.0) w -= 6.0 * b * b * b * b * b;
+    if (q < 1.0) w += 15.0 * c * c * c * c * c;
+    return sigma_ * w;
+  }
+  double dW(double r) const {
+    const double q = r * inv_h_;
+    if (q >= 3.0) return 0.0;
+    const double a = 3.0 - q, b = 2.0 - q, c = 1.0 - q;
+    double w = -5.0 * a * a * a * a;
+    if (q < 2.0) w += 30.0 * b * b * b * b;
+    if (q < 1.0) w -= 75.0 * c * c * c * c;
+    return sigma_ * inv_h_ * w;
+  }
+
+ private:
+  static constexpr double norm() {
+    if constexpr (D == 1) return 1.0 / 120.0;
+    if constexpr (D == 2) return 7.0 / (478.0 * std::numbers::pi);
+    return 3.0 / (359.0 * std::numbers::pi);
+  }
+  static double ipow(double x) {
+    double r = 1.0;
+    for (int i = 0; i < D; ++i) r *= x;
+    return r;
+  }
+  double inv_h_, sigma_;
+};
+
+template <int D>
+class WendlandC2 {
+ public:
+  static constexpr double kSupport = 2.0;
+  explicit WendlandC2(double h) : inv_h_(1.0 / h), sigma_(norm() * ipow(1.0 / h)) {}
+  double support_radius() const { return kSupport / inv_h_; }
+  double W(double r) const {
+    const double q = r * inv_h_;
+    if (q >= 2.0) return 0.0;
+    const double a = 1.0 - 0.5 * q;
+    return sigma_ * a * a * a * a * (2.0 * q + 1.0);
+  }
+  double dW(double r) const {
+    const double q = r * inv_h_;
+    if (q >= 2.0) return 0.0;
+    const double a = 1.0 - 0.5 * q;
+    return sigma_ * inv_h_ * (-5.0 * q) * a * a * a;
+  }
+
+ private:
+  static constexpr double norm() {
+    if constexpr (D == 1) return 3.0 / 4.0;  // Wendland C2 in 1D differs in form; unused
+    if constexpr (D == 2) return 7.0 / (4.0 * std::numbers::pi);
+    return 21.0 / (16.0 * std::numbers::pi);
+  }
+  static double ipow(double x) {
+    double r = 1.0;
+    for (int i = 0; i < D; ++i) r *= x;
+    return r;
+  }
+  double inv_h_, sigma_;
+};
+
+}  // namespace sph

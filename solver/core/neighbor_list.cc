@@ -1,0 +1,112 @@
+#include "solver/core/neighbor_list.h"
+
+#include <algorithm>
+
+namespace sph {
+
+template <int D>
+void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
+                            const CellBox<D>& box, double rc) {
+  box_ = box;
+  std::size_t ncell = 1;
+  for (int a = 0; a < D; ++a) {
+    dims_[a] = box.hi[a] - box.lo[a];
+    ncell *= static_cast<std::size_t>(dims_[a]);
+  }
+  const std::size_t n = s.size();
+  cell_of_.resize(n);
+  cell_start_.assign(ncell + 1, 0);
+  cell_fluid_.assign(ncell, 0);
+  const Vec<D>* x = s.x.data();
+  const Kind* kind = s.kind.data();
+  const ParticleId* id = s.id.data();
+  const std::size_t owned_n = s.owned();
+  for (std::size_t i = 0; i < n; ++i) {
+    const ICoord<D> c = grid.coord(x[i]);
+    // Owned particles belong to the interior cells; clamping keeps a corrupted position
+    // (reported by the stability guard at the end of the step) from indexing outside.
+    const int margin = i < owned_n ? 1 : 0;
+    std::size_t lin = 0;
+    for (int a = D - 1; a >= 0; --a)
+      lin = lin * static_cast<std::size_t>(dims_[a]) +
+            static_cast<std::size_t>(std::clamp(c[a] - box.lo[a], margin, dims_[a] - 1 - margin));
+    cell_of_[i] = static_cast<std::uint32_t>(lin);
+    ++cell_start_[lin + 1];
+    if (kind[i] == Kind::kFluid) ++cell_fluid_[lin];
+  }
+  for (std::size_t c = 0; c < ncell; ++c) cell_start_[c + 1] += cell_start_[c];
+  cell_items_.resize(n);
+  {
+    std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) cell_items_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
+  }
+  // Ascending id within each cell (insertion sort: cells are small and nearly sorted because
+  // owned particles are kept in cell order).
+  for (std::size_t c = 0; c < ncell; ++c) {
+    std::uint32_t* b = cell_items_.data() + cell_start_[c];
+    std::uint32_t* e = cell_items_.data() + cell_start_[c + 1];
+    for (std::uint32_t* p = b + 1; p < e; ++p) {
+      const std::uint32_t v = *p;
+      std::uint32_t* q = p;
+      while (q > b && id[*(q - 1)] > id[v]) {
+        *q = *(q - 1);
+        --q;
+      }
+      *q = v;
+    }
+  }
+
+  // Stencil offsets in linear cell index, fixed order.
+  constexpr int kStencil = D == 2 ? 9 : 27;
+  long long offs[kStencil];
+  {
+    int k = 0;
+    const long long sx = 1, sy = dims_[0], sz = D == 3 ? static_cast<long long>(dims_[0]) * dims_[1] : 0;
+    for (int dz = (D == 3 ? -1 : 0); dz <= (D == 3 ? 1 : 0); ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) offs[k++] = dz * sz + dy * sy + dx * sx;
+  }
+
+  const double rc2 = rc * rc;
+  const std::size_t owned = s.owned();
+  start_.resize(owned + 1);
+  nbr_.clear();
+  start_[0] = 0;
+  for (std::size_t i = 0; i < owned; ++i) {
+    const long long ci = cell_of_[i];
+    const bool fluid = kind[i] == Kind::kFluid;
+    if (!fluid) {
+      bool any = false;
+      for (int k = 0; k < kStencil && !any; ++k) any = cell_fluid_[static_cast<std::size_t>(ci + offs[k])] > 0;
+      if (!any) {
+        start_[i + 1] = static_cast<std::uint32_t>(nbr_.size());
+        continue;
+      }
+    }
+    const Vec<D> xi = x[i];
+    for (int k = 0; k < kStencil; ++k) {
+      const std::size_t c = static_cast<std::size_t>(ci + offs[k]);
+      for (std::uint32_t q = cell_start_[c]; q < cell_start_[c + 1]; ++q) {
+        const std::uint32_t j = cell_items_[q];
+        if (j == i) continue;
+        if (!fluid && kind[j] != Kind::kFluid) continue;
+        if ((xi - x[j]).squaredNorm() < rc2) nbr_.push_back(j);
+      }
+    }
+    start_[i + 1] = static_cast<std::uint32_t>(nbr_.size());
+  }
+}
+
+template <int D>
+std::vector<std::uint32_t> NeighborList<D>::owned_in_cell_order(std::size_t owned) const {
+  std::vector<std::uint32_t> order;
+  order.reserve(owned);
+  for (std::uint32_t i : cell_items_)
+    if (i < owned) order.push_back(i);
+  return order;
+}
+
+template class NeighborList<2>;
+template class NeighborList<3>;
+
+}  // namespace sph

@@ -1,0 +1,62 @@
+#pragma once
+// Cell-linked neighbour search producing a compact (CSR) neighbour list per step, shared by
+// every pass over pairs in that step (density, wall extrapolation, forces). The list of a
+// particle is in canonical order: the 3^D cells around it in fixed order, and ascending global
+// id within each cell. Sums over neighbours are therefore evaluated in the same order
+// whatever the rank count or memory order, which makes results independent of the
+// decomposition.
+#include <cstdint>
+#include <vector>
+
+#include "solver/core/particle_store.h"
+#include "solver/parallel/cell_grid.h"
+
+namespace sph {
+
+template <int D>
+class NeighborList {
+ public:
+  // Bins all particles of `s` (owned and ghosts) into the cells of `box` (this rank's cells
+  // plus the ghost layer) and builds the neighbour lists of the owned particles. Fluid
+  // particles get all neighbours within rc; wall and rigid particles only their fluid
+  // neighbours (all the wall condition needs).
+  void build(const ParticleStore<D>& s, const CellGrid<D>& grid, const CellBox<D>& box, double rc);
+
+  const std::uint32_t* begin(std::size_t i) const { return nbr_.data() + start_[i]; }
+  const std::uint32_t* end(std::size_t i) const { return nbr_.data() + start_[i + 1]; }
+  std::size_t pairs() const { return nbr_.size(); }
+  std::size_t bytes() const {
+    return nbr_.capacity() * sizeof(std::uint32_t) + start_.capacity() * sizeof(std::uint32_t) +
+           (cell_start_.capacity() + cell_items_.capacity() + cell_of_.capacity()) * sizeof(std::uint32_t);
+  }
+
+  // Calls fn(j) for every particle (owned or ghost) in the 3^D cells around the global cell
+  // c, which must lie in this rank's box (not in the ghost layer). Canonical order.
+  template <class Fn>
+  void for_each_near(const ICoord<D>& c, Fn&& fn) const {
+    ICoord<D> l;
+    for (int a = 0; a < D; ++a) l[a] = c[a] - box_.lo[a];
+    for (int dz = (D == 3 ? -1 : 0); dz <= (D == 3 ? 1 : 0); ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          std::size_t lin = static_cast<std::size_t>(l[0] + dx) +
+                            static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(l[1] + dy);
+          if constexpr (D == 3)
+            lin += static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(dims_[1]) *
+                   static_cast<std::size_t>(l[2] + dz);
+          for (std::uint32_t q = cell_start_[lin]; q < cell_start_[lin + 1]; ++q) fn(cell_items_[q]);
+        }
+  }
+
+  // Owned particles ordered by (cell, id): reordering memory this way keeps neighbours close
+  // in memory. Valid after build().
+  std::vector<std::uint32_t> owned_in_cell_order(std::size_t owned) const;
+
+ private:
+  CellBox<D> box_;
+  ICoord<D> dims_{};
+  std::vector<std::uint32_t> cell_start_, cell_items_, cell_of_, cell_fluid_;
+  std::vector<std::uint32_t> start_, nbr_;
+};
+
+}  // namespace sph

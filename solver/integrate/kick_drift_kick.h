@@ -1,0 +1,30 @@
+#pragma once
+// Velocity-Verlet time integration in kick-drift-kick form (Fuchs 2021 eqs. 30, 32, 38),
+// with the transport velocity of Adami, Hu, Adams 2013 (eqs. 14-16 there):
+//   u^{n+1/2} = u^n + dt/2 a^n,   u~^{n+1/2} = u^{n+1/2} + dt/2 a~^n,   r^{n+1} = r^n + dt u~^{n+1/2},
+//   u^{n+1} = u^{n+1/2} + dt/2 a^{n+1}.
+// Only owned fluid particles are integrated; walls follow their prescribed motion.
+#include "solver/core/particle_store.h"
+
+namespace sph {
+
+template <int D>
+void kick(ParticleStore<D>& s, double half_dt) {
+  for (std::size_t i = 0; i < s.owned(); ++i)
+    if (s.kind[i] == Kind::kFluid) s.v[i] += half_dt * s.a[i];
+}
+
+template <int D>
+void set_transport_velocity(ParticleStore<D>& s, Column<Vec<D>>& transport,
+                            const Column<Vec<D>>& background, double half_dt) {
+  for (std::size_t i = 0; i < s.owned(); ++i)
+    if (s.kind[i] == Kind::kFluid) transport[i] = s.v[i] + half_dt * background[i];
+}
+
+template <int D>
+void drift(ParticleStore<D>& s, const Column<Vec<D>>& advect, double dt) {
+  for (std::size_t i = 0; i < s.owned(); ++i)
+    if (s.kind[i] == Kind::kFluid) s.x[i] += dt * advect[i];
+}
+
+}  // namespace sph

@@ -1,0 +1,62 @@
+#pragma once
+// The one result file of a run, result.h5, and its XDMF sidecar result.xmf:
+//   /meta                      attributes: case text, code version, ranks, active units, status
+//   /snapshots/NNNNNN          per output time: position (N x 3), velocity (N x 3), density,
+//                              pressure, mass, id, kind, material; attributes time, step, count
+//   /series/<group>/<name>     time series (first dimension = samples), each group with "time"
+// The file is opened for each write and closed after it, so a killed run leaves a readable
+// file with everything up to its last output. All functions are collective.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "solver/core/particle_store.h"
+#include "solver/io/hdf5.h"
+#include "solver/io/xdmf.h"
+#include "solver/parallel/comm.h"
+
+namespace sph {
+
+class ResultFile {
+ public:
+  ResultFile(const Comm& comm, const std::string& dir);
+  const std::string& h5_path() const { return h5_; }
+  const std::string& xmf_path() const { return xmf_; }
+
+  // Declares a series "group/name" whose samples have shape `row` (empty: scalar). Call
+  // before create() or carry_over().
+  void add_series(const std::string& name, std::vector<std::uint64_t> row = {});
+  void append_series(const std::string& name, const std::vector<double>& row);
+
+  // Starts a new result file.
+  void create(const std::map<std::string, std::string>& meta);
+  // Continues `previous` (an earlier attempt's result, possibly this very file): keeps its
+  // snapshots and series samples up to time t and drops later ones. Returns false, and
+  // starts a new file, when `previous` is missing or unreadable.
+  bool carry_over(const std::string& previous, double t, const std::map<std::string, std::string>& meta);
+
+  template <int D>
+  void write_snapshot(const ParticleStore<D>& s, double t, std::int64_t step);
+  // Writes pending series samples.
+  void flush();
+  void set_meta(const std::map<std::string, std::string>& kv);
+  std::size_t snapshot_count() const { return snapshots_.size(); }
+
+ private:
+  struct Series {
+    std::vector<std::uint64_t> row;
+    std::vector<double> pending;
+    std::uint64_t pending_rows = 0;
+  };
+  void flush_into(hid_t file);
+  void write_xdmf_on_root() const;
+
+  Comm comm_;
+  std::string dir_, h5_, xmf_;
+  std::vector<SnapshotEntry> snapshots_;
+  std::map<std::string, Series> series_;
+  std::vector<XdmfField> fields_;
+};
+
+}  // namespace sph

@@ -1,0 +1,27 @@
+#pragma once
+// XDMF sidecar describing the particle snapshots of result.h5 as a temporal collection of
+// Polyvertex grids, which ParaView 5.11 opens as a time series (shared/NOTES.md).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sph {
+
+struct SnapshotEntry {
+  std::string group;  // e.g. "/snapshots/000012"
+  double time = 0;
+  std::uint64_t count = 0;
+};
+
+struct XdmfField {
+  std::string name;
+  int components = 1;       // 1 scalar, 3 vector
+  std::string number_type;  // Float, Int, UInt, UChar
+  int precision = 8;
+};
+
+// Writes `path` (atomically: temporary file then rename).
+void write_xdmf(const std::string& path, const std::string& h5_name,
+                const std::vector<SnapshotEntry>& snapshots, const std::vector<XdmfField>& fields);
+
+}  // namespace sph

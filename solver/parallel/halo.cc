@@ -1,0 +1,235 @@
+#include "solver/parallel/halo.h"
+
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <stdexcept>
+
+namespace sph {
+namespace {
+
+template <int D>
+std::vector<ICoord<D>> periodic_shifts(const std::array<bool, D>& periodic) {
+  std::vector<ICoord<D>> out;
+  int total = 1;
+  for (int a = 0; a < D; ++a) total *= 3;
+  for (int k = 0; k < total; ++k) {
+    ICoord<D> s;
+    int r = k;
+    bool ok = true;
+    for (int a = 0; a < D; ++a) {
+      s[a] = r % 3 - 1;
+      r /= 3;
+      if (s[a] != 0 && !periodic[a]) ok = false;
+    }
+    if (ok) out.push_back(s);
+  }
+  return out;
+}
+
+}  // namespace
+
+template <int D>
+void Halo<D>::set_decomposition(Decomposition<D> d) {
+  decomp_ = std::move(d);
+  targets_.clear();
+  const CellBox<D>& mine = my_box();
+  for (int r = 0; r < comm_.size(); ++r) {
+    CellBox<D> theirs = decomp_.box(r);
+    for (int a = 0; a < D; ++a) {
+      --theirs.lo[a];
+      ++theirs.hi[a];
+    }
+    for (const auto& s : periodic_shifts<D>(grid_.periodic)) {
+      const bool zero = std::all_of(s.begin(), s.end(), [](int v) { return v == 0; });
+      if (r == comm_.rank() && zero) continue;
+      // Cells c of my box with c + s*n inside their expanded box.
+      CellBox<D> cells;
+      Vec<D> shift;
+      for (int a = 0; a < D; ++a) {
+        cells.lo[a] = std::max(mine.lo[a], theirs.lo[a] - s[a] * grid_.n[a]);
+        cells.hi[a] = std::min(mine.hi[a], theirs.hi[a] - s[a] * grid_.n[a]);
+        shift[a] = s[a] * grid_.length[a];
+      }
+      if (!cells.empty()) targets_.push_back({r, cells, shift});
+    }
+  }
+}
+
+template <int D>
+void Halo<D>::exchange() {
+  const int P = comm_.size();
+  std::vector<int> send_bytes(static_cast<size_t>(P)), send_displ(static_cast<size_t>(P));
+  std::size_t total = 0;
+  for (int r = 0; r < P; ++r) {
+    send_bytes[static_cast<size_t>(r)] = static_cast<int>(send_buf_[static_cast<size_t>(r)].size());
+    send_displ[static_cast<size_t>(r)] = static_cast<int>(total);
+    total += send_buf_[static_cast<size_t>(r)].size();
+  }
+  if (total > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw std::runtime_error("halo exchange over 2 GiB from one rank: use more ranks");
+  std::vector<std::byte> flat(total);
+  for (int r = 0; r < P; ++r)
+    if (!send_buf_[static_cast<size_t>(r)].empty())
+      std::memcpy(flat.data() + send_displ[static_cast<size_t>(r)],
+                  send_buf_[static_cast<size_t>(r)].data(), send_buf_[static_cast<size_t>(r)].size());
+  const double t0 = MPI_Wtime();
+  recv_bytes_.assign(static_cast<size_t>(P), 0);
+  MPI_Alltoall(send_bytes.data(), 1, MPI_INT, recv_bytes_.data(), 1, MPI_INT, comm_.raw());
+  recv_displ_.assign(static_cast<size_t>(P), 0);
+  std::size_t rtotal = 0;
+  for (int r = 0; r < P; ++r) {
+    recv_displ_[static_cast<size_t>(r)] = static_cast<int>(rtotal);
+    rtotal += static_cast<std::size_t>(recv_bytes_[static_cast<size_t>(r)]);
+  }
+  recv_buf_.resize(rtotal);
+  MPI_Alltoallv(flat.data(), send_bytes.data(), send_displ.data(), MPI_BYTE, recv_buf_.data(),
+                recv_bytes_.data(), recv_displ_.data(), MPI_BYTE, comm_.raw());
+  comm_seconds_ += MPI_Wtime() - t0;
+}
+
+template <int D>
+void Halo<D>::pack(const ParticleStore<D>& s, const std::vector<ColumnBase*>& cols,
+                   bool shift_positions) {
+  const int P = comm_.size();
+  send_buf_.resize(static_cast<size_t>(P));
+  for (int r = 0; r < P; ++r) {
+    const auto& idx = send_idx_[static_cast<size_t>(r)];
+    auto& buf = send_buf_[static_cast<size_t>(r)];
+    std::size_t bytes = 0;
+    for (const ColumnBase* c : cols) bytes += c->elem_bytes() * idx.size();
+    buf.resize(bytes);
+    std::byte* out = buf.data();
+    for (const ColumnBase* c : cols) {
+      const std::size_t e = c->elem_bytes();
+      const std::byte* src = c->bytes();
+      if (shift_positions && c == &s.x) {
+        const auto& sh = send_shift_[static_cast<size_t>(r)];
+        for (std::size_t k = 0; k < idx.size(); ++k) {
+          const Vec<D> xs = s.x[idx[k]] + sh[k];
+          std::memcpy(out, &xs, e);
+          out += e;
+        }
+      } else {
+        for (const std::uint32_t i : idx) {
+          std::memcpy(out, src + i * e, e);
+          out += e;
+        }
+      }
+    }
+  }
+}
+
+template <int D>
+void Halo<D>::unpack(const std::vector<ColumnBase*>& cols, std::size_t first) {
+  std::size_t dst = first;
+  for (int r = 0; r < comm_.size(); ++r) {
+    const std::size_t n = static_cast<std::size_t>(recv_particles_[static_cast<size_t>(r)]);
+    const std::byte* in = recv_buf_.data() + recv_displ_[static_cast<size_t>(r)];
+    for (ColumnBase* c : cols) {
+      const std::size_t e = c->elem_bytes();
+      std::memcpy(c->bytes() + dst * e, in, n * e);
+      in += n * e;
+    }
+    dst += n;
+  }
+}
+
+template <int D>
+void Halo<D>::migrate(ParticleStore<D>& s) {
+  s.drop_ghosts();
+  const int P = comm_.size(), me = comm_.rank();
+  send_idx_.assign(static_cast<size_t>(P), {});
+  send_shift_.assign(static_cast<size_t>(P), {});
+  std::vector<std::uint32_t> keep;
+  keep.reserve(s.owned());
+  const CellBox<D>& mine = my_box();
+  for (std::size_t i = 0; i < s.owned(); ++i) {
+    Vec<D>& x = s.x[i];
+    for (int a = 0; a < D; ++a) {
+      if (!grid_.periodic[a]) continue;
+      if (x[a] < grid_.lo[a] || x[a] >= grid_.lo[a] + grid_.length[a]) {
+        // A prescribed wall may be many periods away; fluid particles are at most one.
+        double r = std::fmod(x[a] - grid_.lo[a], grid_.length[a]);
+        if (r < 0) r += grid_.length[a];
+        x[a] = grid_.lo[a] + r;
+      }
+    }
+    const ICoord<D> c = grid_.canonical(grid_.coord(x));
+    const int owner = mine.contains(c) ? me : decomp_.owner(c);
+    if (owner == me) keep.push_back(static_cast<std::uint32_t>(i));
+    else send_idx_[static_cast<size_t>(owner)].push_back(static_cast<std::uint32_t>(i));
+  }
+  std::vector<ColumnBase*> cols;
+  for (const auto& c : s.columns())
+    if (c->persistent()) cols.push_back(c.get());
+  pack(s, cols, false);
+  exchange();
+  // Particle counts follow from bytes: every migrated particle carries the same columns.
+  const std::size_t per = s.persistent_bytes_per_particle();
+  recv_particles_.assign(static_cast<size_t>(P), 0);
+  std::size_t incoming = 0;
+  for (int r = 0; r < P; ++r) {
+    recv_particles_[static_cast<size_t>(r)] =
+        static_cast<int>(static_cast<std::size_t>(recv_bytes_[static_cast<size_t>(r)]) / per);
+    incoming += static_cast<std::size_t>(recv_particles_[static_cast<size_t>(r)]);
+  }
+  if (keep.size() != s.owned()) s.reorder_owned(keep);
+  const std::size_t n0 = s.owned();
+  s.resize(n0 + incoming, n0 + incoming);
+  unpack(cols, n0);
+}
+
+template <int D>
+void Halo<D>::build_ghosts(ParticleStore<D>& s) {
+  s.drop_ghosts();
+  const int P = comm_.size();
+  send_idx_.assign(static_cast<size_t>(P), {});
+  send_shift_.assign(static_cast<size_t>(P), {});
+  if (!targets_.empty()) {
+    const CellBox<D>& mine = my_box();
+    for (std::size_t i = 0; i < s.owned(); ++i) {
+      const ICoord<D> c = grid_.coord(s.x[i]);
+      // Interior cells are needed by nobody: skip the target scan for them.
+      bool interior = true;
+      for (int a = 0; a < D; ++a)
+        if (c[a] <= mine.lo[a] || c[a] >= mine.hi[a] - 1) interior = false;
+      if (interior) continue;
+      for (const Target& t : targets_) {
+        if (!t.cells.contains(c)) continue;
+        send_idx_[static_cast<size_t>(t.rank)].push_back(static_cast<std::uint32_t>(i));
+        send_shift_[static_cast<size_t>(t.rank)].push_back(t.shift);
+      }
+    }
+  }
+  std::vector<ColumnBase*> cols;
+  for (const auto& c : s.columns())
+    if (c->ghost()) cols.push_back(c.get());
+  std::size_t per = 0;
+  for (const ColumnBase* c : cols) per += c->elem_bytes();
+  pack(s, cols, true);
+  exchange();
+  recv_particles_.assign(static_cast<size_t>(P), 0);
+  std::size_t incoming = 0;
+  for (int r = 0; r < P; ++r) {
+    recv_particles_[static_cast<size_t>(r)] =
+        static_cast<int>(static_cast<std::size_t>(recv_bytes_[static_cast<size_t>(r)]) / per);
+    incoming += static_cast<std::size_t>(recv_particles_[static_cast<size_t>(r)]);
+  }
+  const std::size_t n0 = s.owned();
+  s.resize(n0 + incoming, n0);
+  unpack(cols, n0);
+}
+
+template <int D>
+void Halo<D>::update(ParticleStore<D>& s, std::initializer_list<ColumnBase*> list) {
+  std::vector<ColumnBase*> cols(list);
+  pack(s, cols, false);
+  exchange();
+  unpack(cols, s.owned());
+}
+
+template class Halo<2>;
+template class Halo<3>;
+
+}  // namespace sph

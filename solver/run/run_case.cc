@@ -1,0 +1,78 @@
+#include "solver/run/run_case.h"
+
+#include <filesystem>
+
+#include "case/validate.h"
+#include "solver/core/kernel.h"
+#include "solver/io/hdf5.h"
+#include "solver/run/simulation.h"
+
+#ifndef SPHD_VERSION
+#define SPHD_VERSION "unknown"
+#endif
+
+namespace sph {
+
+extern template class Simulation<2, QuinticSpline<2>>;
+extern template class Simulation<2, WendlandC2<2>>;
+extern template class Simulation<3, QuinticSpline<3>>;
+extern template class Simulation<3, WendlandC2<3>>;
+
+std::string code_version() { return SPHD_VERSION; }
+
+const char* to_string(RunStatus s) {
+  switch (s) {
+    case RunStatus::kCompleted:
+      return "completed";
+    case RunStatus::kCancelled:
+      return "cancelled";
+    case RunStatus::kInterrupted:
+      return "interrupted";
+    case RunStatus::kUnstable:
+      return "unstable";
+    case RunStatus::kError:
+      return "error";
+  }
+  return "error";
+}
+
+namespace {
+template <int D, class K>
+RunOutcome run_with(const v1::Case& c, const Comm& comm, const RunOptions& o) {
+  Simulation<D, K> sim(c, comm, o);
+  return sim.run();
+}
+}  // namespace
+
+RunOutcome run_case(const v1::Case& c, MPI_Comm comm_raw, const RunOptions& options) {
+  RunOutcome out;
+  h5::silence_errors();
+  const auto errors = validate_case(c);
+  if (!errors.empty()) {
+    out.status = RunStatus::kError;
+    out.message = "invalid case: " + join_errors(errors);
+    return out;
+  }
+  if (options.output_dir.empty()) {
+    out.status = RunStatus::kError;
+    out.message = "no output directory given";
+    return out;
+  }
+  try {
+    const Comm comm(comm_raw);
+    if (comm.root()) std::filesystem::create_directories(options.output_dir);
+    comm.barrier();
+    const bool wendland = c.kernel() == v1::WENDLAND_C2;
+    if (c.dimension() == 2)
+      return wendland ? run_with<2, WendlandC2<2>>(c, comm, options)
+                      : run_with<2, QuinticSpline<2>>(c, comm, options);
+    return wendland ? run_with<3, WendlandC2<3>>(c, comm, options)
+                    : run_with<3, QuinticSpline<3>>(c, comm, options);
+  } catch (const std::exception& e) {
+    out.status = RunStatus::kError;
+    out.message = e.what();
+  }
+  return out;
+}
+
+}  // namespace sph

@@ -1,0 +1,148 @@
+#pragma once
+// One simulation run: builds the scene and the physics units a case calls for, then advances
+// it with kick-drift-kick steps until the end time, writing results, checkpoints and progress.
+// Templated on dimension and kernel so the pair loops inline the kernel.
+//
+// A step (Fuchs 2021 "Time integration"; Adami 2012 sec. 3.3):
+//   kick u^{n+1/2}, [transport velocity], drift r^{n+1}, prescribed wall motion,
+//   migrate + ghosts, neighbour lists, density (summation or continuity) + EOS, ghost rho/p,
+//   wall condition (Adami 2012 eqs. 22-28), ghost wall values, forces a^{n+1}, kick u^{n+1}.
+// Each unit appears only if the case needs it; unit_seconds() reports what ran and its time.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "case/materials.h"
+#include "case/motion.h"
+#include "solver/core/neighbor_list.h"
+#include "solver/core/particle_store.h"
+#include "solver/diagnostics/conservation.h"
+#include "solver/diagnostics/probes.h"
+#include "solver/diagnostics/stability_guards.h"
+#include "solver/integrate/kick_drift_kick.h"
+#include "solver/integrate/time_step.h"
+#include "solver/io/checkpoint.h"
+#include "solver/io/result_file.h"
+#include "solver/parallel/halo.h"
+#include "solver/physics/body_force.h"
+#include "solver/physics/continuity_density.h"
+#include "solver/physics/density_summation.h"
+#include "solver/physics/equation_of_state.h"
+#include "solver/physics/fluid_forces.h"
+#include "solver/physics/fluid_table.h"
+#include "solver/physics/wall_boundary.h"
+#include "solver/physics/wall_motion.h"
+#include "solver/run/output_schedule.h"
+#include "solver/run/run_case.h"
+#include "solver/scene/scene_builder.h"
+
+namespace sph {
+
+std::string code_version();
+
+template <int D, class K>
+class Simulation {
+ public:
+  Simulation(const v1::Case& c, const Comm& comm, const RunOptions& opt);
+  RunOutcome run();
+
+  // Access for tests and benchmarks.
+  ParticleStore<D>& particles() { return s_; }
+  const std::map<std::string, double>& unit_seconds() const { return timers_; }
+  // Advances one step (after start()); returns the reduced end-of-step checks.
+  void start();
+  void advance();
+  double time() const { return t_; }
+  std::int64_t steps() const { return step_; }
+  double dt() const { return dt_; }
+  std::size_t pairs() const { return nl_.pairs(); }
+  std::map<std::string, std::size_t> memory_by_owner() const;
+
+ private:
+  class Timer {
+   public:
+    explicit Timer(double& acc) : acc_(acc), t0_(MPI_Wtime()) {}
+    ~Timer() { acc_ += MPI_Wtime() - t0_; }
+
+   private:
+    double& acc_;
+    double t0_;
+  };
+  double& timer(const char* name) { return timers_[name]; }
+
+  void build_scene();
+  void build_units();
+  void decompose_by_histogram();
+  void prime();
+  void exchange_and_search();
+  void compute_density_and_pressure(double dt);
+  void apply_wall_condition();
+  void compute_forces();
+  void step(double dt);
+  struct EndOfStep {
+    double max_speed = 0, max_density_dev = 0;
+    bool violated = false, cancel = false, interrupt = false, checkpoint = false;
+    std::string diagnosis;
+  };
+  EndOfStep end_of_step_checks();
+  void sample_series();
+  void write_snapshot();
+  std::string write_checkpoint_now();
+  void report_progress(bool force);
+  std::map<std::string, std::string> metadata(const std::string& status) const;
+  Vec<D> fluid_body_force(double t) const;
+  void maybe_rebalance();
+
+  const v1::Case& c_;
+  Comm comm_;
+  RunOptions opt_;
+  std::vector<MaterialParams> mats_;
+  std::vector<FluidConstants> fluids_;
+  double dx_, h_, rc_, wall_volume_;
+  K kernel_;
+  CellGrid<D> grid_;
+  Halo<D> halo_;
+  ParticleStore<D> s_;
+  NeighborList<D> nl_;
+  GuardSettings guards_;
+  OutputSchedule schedule_;
+  ResultFile result_;
+
+  // Units (present only when the case needs them).
+  std::optional<DensitySummation<D, K>> summation_;
+  std::optional<ContinuityDensity<D, K>> continuity_;
+  std::optional<WallBoundary<D, K>> walls_;
+  std::optional<WallMotion<D>> wall_motion_;
+  std::optional<Probes<D, K>> probes_;
+  std::optional<FluidForces<D, K>> forces_;
+  std::optional<BodyForce<D>> body_;
+  Column<Vec<D>>* transport_ = nullptr;   // u~ (transport-velocity formulation)
+  Column<Vec<D>>* background_ = nullptr;  // a~
+  Column<std::uint8_t>* free_slip_ = nullptr;
+  std::vector<std::string> units_;
+  std::optional<TimeStepBound> bound_;
+  bool fluid_gravity_ = true;
+
+  // Run state (what a checkpoint stores besides the particles).
+  double t_ = 0, dt_ = 0, dt0_ = 0, next_series_ = 0;
+  std::int64_t step_ = 0;
+  std::size_t next_output_ = 0;
+
+  // Bookkeeping.
+  std::map<std::string, double> timers_;
+  double wall_start_ = 0, last_progress_wall_ = -1e300, last_progress_time_ = 0;
+  std::int64_t last_progress_step_ = 0;
+  double last_checkpoint_wall_ = 0;
+  double imbalance_ = 1;
+  std::int64_t global_particles_ = 0;
+  std::string last_checkpoint_;
+  bool last_step_had_snapshot_ = false;
+};
+
+}  // namespace sph
+
+#include "solver/run/simulation_impl.h"

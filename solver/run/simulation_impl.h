@@ -1,0 +1,624 @@
+#pragma once
+// Implementation of Simulation<D, K> (included by simulation.h; instantiated in
+// simulation_2d.cc and simulation_3d.cc).
+#include <cmath>
+#include <numeric>
+
+namespace sph {
+
+namespace detail {
+template <int D>
+Vec<D> to_vec(const v1::Vec3& v) {
+  Vec<D> out;
+  out[0] = v.x();
+  out[1] = v.y();
+  if constexpr (D == 3) out[2] = v.z();
+  return out;
+}
+template <int D>
+Vec<D> to_vec(const Point3& p) {
+  Vec<D> out;
+  for (int a = 0; a < D; ++a) out[a] = p[a];
+  return out;
+}
+}  // namespace detail
+
+template <int D, class K>
+Simulation<D, K>::Simulation(const v1::Case& c, const Comm& comm, const RunOptions& opt)
+    : c_(c),
+      comm_(comm),
+      opt_(opt),
+      mats_(resolve_materials(c)),
+      fluids_(make_fluid_table(mats_)),
+      dx_(c.dx()),
+      h_(c.dx()),  // h = dx (Fuchs 2021 Remark 8)
+      rc_(K::kSupport * c.dx()),
+      wall_volume_(std::pow(c.dx(), D)),
+      kernel_(c.dx()),
+      grid_(detail::to_vec<D>(c.domain().lo()), detail::to_vec<D>(c.domain().hi()), K::kSupport * c.dx(),
+            [&] {
+              std::array<bool, D> p{};
+              p[0] = c.periodic_x();
+              p[1] = c.periodic_y();
+              if constexpr (D == 3) p[2] = c.periodic_z();
+              return p;
+            }()),
+      halo_(grid_, comm),
+      schedule_(c),
+      result_(comm, opt.output_dir) {
+  const auto& g = c.guards();
+  if (g.has_max_density_deviation()) guards_.max_density_deviation = g.max_density_deviation();
+  if (g.has_min_dt_fraction()) guards_.min_dt_fraction = g.min_dt_fraction();
+  if (g.has_max_mach()) guards_.max_mach = g.max_mach();
+  build_units();
+}
+
+template <int D, class K>
+Vec<D> Simulation<D, K>::fluid_body_force(double t) const {
+  return body_ ? body_->at(t) : Vec<D>::Zero();
+}
+
+template <int D, class K>
+void Simulation<D, K>::build_units() {
+  const auto& fm = c_.fluid_model();
+  units_.push_back("halo_exchange");
+  units_.push_back("neighbor_search");
+  if (fm.density() == v1::CONTINUITY) {
+    units_.push_back(ContinuityDensity<D, K>::kName);
+  } else {
+    summation_.emplace(s_, kernel_);
+    units_.push_back(DensitySummation<D, K>::kName);
+  }
+  units_.push_back("equation_of_state");
+  const bool tvf = fm.transport_velocity();
+  if (tvf) {
+    transport_ = &s_.template add<Vec<D>>("transport_velocity", "transport_velocity", true);
+    background_ = &s_.template add<Vec<D>>("background_acceleration", "transport_velocity", true);
+    background_->set_ghost(false);
+    units_.push_back("transport_velocity");
+  }
+  if (fm.density() == v1::CONTINUITY)
+    continuity_.emplace(s_, kernel_, wall_volume_, tvf ? *transport_ : s_.v);
+  if (c_.walls_size() > 0) {
+    walls_.emplace(s_, kernel_, fluids_);
+    units_.push_back(WallBoundary<D, K>::kName);
+    bool any_slip = false, any_motion = false;
+    std::vector<MotionPath> paths;
+    for (const auto& w : c_.walls()) {
+      any_slip = any_slip || w.free_slip();
+      paths.emplace_back(w.motion(), D);
+      any_motion = any_motion || !paths.back().is_static();
+    }
+    if (any_slip) {
+      free_slip_ = &s_.template add<std::uint8_t>("wall_free_slip", WallBoundary<D, K>::kName, true);
+    }
+    if (any_motion) {
+      wall_motion_.emplace(s_, std::move(paths));
+      units_.push_back(WallMotion<D>::kName);
+    }
+  }
+  bool viscous = false;
+  double c_max = 0, nu_max = 0;
+  for (const auto& f : fluids_) {
+    if (!f.fluid) continue;
+    viscous = viscous || f.eta > 0;
+    c_max = std::max(c_max, f.c);
+  }
+  for (const auto& m : mats_)
+    if (m.fluid) nu_max = std::max(nu_max, m.nu());
+  const double alpha = fm.artificial_viscosity();
+  // Artificial viscosity as an equivalent kinematic viscosity (Adami 2012 eq. 12).
+  nu_max = std::max(nu_max, alpha * h_ * c_max / (2.0 * (D + 2)));
+  forces_.emplace(viscous, alpha > 0, tvf);
+  units_.push_back(std::string(FluidForces<D, K>::kName) + "[pressure" + (viscous ? "+viscous" : "") +
+                   (alpha > 0 ? "+artificial_viscosity" : "") + (tvf ? "+transport_velocity" : "") + "]");
+  Vec<D> g = Vec<D>::Zero();
+  double t_damp = 0;
+  fluid_gravity_ = !c_.has_gravity() || !c_.gravity().has_apply_to_fluid() || c_.gravity().apply_to_fluid();
+  if (c_.has_gravity() && fluid_gravity_) {
+    g = detail::to_vec<D>(c_.gravity().acceleration());
+    t_damp = c_.gravity().damping_time();
+  }
+  const Vec<D> f = detail::to_vec<D>(c_.body_force());
+  if (!g.isZero() || !f.isZero()) {
+    body_.emplace(g, t_damp, f);
+    units_.push_back("body_force");
+  }
+  const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
+  bound_.emplace(h_, factor, c_max, nu_max, body_ ? body_->max_magnitude() : 0.0);
+  if (c_.probes_size() > 0) {
+    std::vector<ProbeSet<D>> sets;
+    for (const auto& p : c_.probes()) {
+      ProbeSet<D> set;
+      set.name = p.name();
+      const Vec<D> a = detail::to_vec<D>(p.position()), b = detail::to_vec<D>(p.line_end());
+      const int n = std::max(1, p.count());
+      for (int k = 0; k < n; ++k) set.points.push_back(n == 1 ? a : Vec<D>(a + (b - a) * (double(k) / (n - 1))));
+      sets.push_back(std::move(set));
+    }
+    probes_.emplace(std::move(sets), kernel_);
+    units_.push_back(Probes<D, K>::kName);
+  }
+  // Series in the result file.
+  for (const char* n : {"time", "step", "dt", "mass", "kinetic_energy", "potential_energy",
+                        "max_density_deviation", "max_speed", "imbalance", "fluid_particles"})
+    result_.add_series(std::string("diagnostics/") + n);
+  result_.add_series("diagnostics/momentum", {static_cast<std::uint64_t>(D)});
+  if (probes_)
+    for (const auto& set : probes_->sets()) {
+      const auto n = static_cast<std::uint64_t>(set.points.size());
+      result_.add_series("probes/" + set.name + "/time");
+      result_.add_series("probes/" + set.name + "/pressure", {n});
+      result_.add_series("probes/" + set.name + "/density", {n});
+      result_.add_series("probes/" + set.name + "/velocity", {n, static_cast<std::uint64_t>(D)});
+    }
+}
+
+template <int D, class K>
+void Simulation<D, K>::decompose_by_histogram() {
+  std::vector<std::int64_t> counts(static_cast<size_t>(grid_.total()), 0);
+  for (std::size_t i = 0; i < s_.owned(); ++i)
+    ++counts[static_cast<size_t>(grid_.linear(grid_.canonical(grid_.coord(s_.x[i]))))];
+  comm_.sum_inplace(counts);
+  halo_.set_decomposition(Decomposition<D>(grid_, comm_.size(), counts));
+}
+
+template <int D, class K>
+void Simulation<D, K>::build_scene() {
+  SceneBuilder scene(c_, mats_);
+  // Pass 1: every rank counts the particles per cell of the whole scene (no communication:
+  // the generation is deterministic), and all compute the same decomposition.
+  std::vector<std::int64_t> counts(static_cast<size_t>(grid_.total()), 0);
+  scene.for_each([&](const SceneParticle& p) {
+    ++counts[static_cast<size_t>(grid_.linear(grid_.canonical(grid_.coord(detail::to_vec<D>(p.x)))))];
+  });
+  halo_.set_decomposition(Decomposition<D>(grid_, comm_.size(), counts));
+  // Pass 2: keep the particles of this rank's cells; ids are global generation indices.
+  const CellBox<D> mine = halo_.my_box();
+  ParticleId next_id = 0;
+  std::vector<SceneParticle> kept;
+  std::vector<ParticleId> ids;
+  scene.for_each([&](const SceneParticle& p) {
+    const ParticleId id = next_id++;
+    if (!mine.contains(grid_.canonical(grid_.coord(detail::to_vec<D>(p.x))))) return;
+    kept.push_back(p);
+    ids.push_back(id);
+  });
+  global_particles_ = next_id;
+  s_.resize(kept.size(), kept.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const SceneParticle& p = kept[i];
+    s_.x[i] = detail::to_vec<D>(p.x);
+    s_.v[i] = detail::to_vec<D>(p.v);
+    s_.a[i] = Vec<D>::Zero();
+    s_.rho[i] = p.rho;
+    s_.p[i] = 0;
+    s_.m[i] = p.mass;
+    s_.kind[i] = p.kind;
+    s_.material[i] = p.material;
+    s_.id[i] = ids[i];
+    if (transport_) (*transport_)[i] = s_.v[i];
+    if (background_) (*background_)[i] = Vec<D>::Zero();
+    if (wall_motion_) {
+      wall_motion_->reference_position()[i] = s_.x[i];
+      wall_motion_->wall_index()[i] = p.wall;
+    }
+    if (free_slip_)
+      (*free_slip_)[i] = p.kind == Kind::kWall && c_.walls(p.wall).free_slip() ? 1 : 0;
+  }
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    if (s_.kind[i] == Kind::kFluid) s_.p[i] = fluids_[s_.material[i]].pressure(s_.rho[i]);
+}
+
+template <int D, class K>
+void Simulation<D, K>::exchange_and_search() {
+  {
+    Timer tm(timer("halo_exchange"));
+    halo_.migrate(s_);
+    halo_.build_ghosts(s_);
+  }
+  Timer tm(timer("neighbor_search"));
+  nl_.build(s_, grid_, halo_.ghost_box(), rc_);
+}
+
+template <int D, class K>
+void Simulation<D, K>::compute_density_and_pressure(double dt) {
+  if (summation_) {
+    Timer tm(timer(DensitySummation<D, K>::kName));
+    summation_->run(nl_);
+  } else if (continuity_ && dt > 0) {
+    Timer tm(timer(ContinuityDensity<D, K>::kName));
+    continuity_->run(nl_, dt);
+  }
+  {
+    Timer tm(timer("equation_of_state"));
+    apply_equation_of_state(s_, fluids_);
+  }
+  Timer tm(timer("halo_exchange"));
+  halo_.update(s_, {&s_.rho, &s_.p});
+}
+
+template <int D, class K>
+void Simulation<D, K>::apply_wall_condition() {
+  if (!walls_) return;
+  {
+    Timer tm(timer(WallBoundary<D, K>::kName));
+    walls_->run(nl_, fluid_body_force(t_), wall_motion_ ? &wall_motion_->acceleration() : nullptr);
+  }
+  Timer tm(timer("halo_exchange"));
+  halo_.update(s_, {&s_.rho, &s_.p, &walls_->noslip_velocity(), &walls_->fluid_material()});
+}
+
+template <int D, class K>
+void Simulation<D, K>::compute_forces() {
+  Timer tm(timer("fluid_forces"));
+  FluidForceInputs<D> in;
+  in.fluids = &fluids_;
+  in.body = fluid_body_force(t_);
+  in.wall_volume = wall_volume_;
+  in.h = h_;
+  in.alpha = c_.fluid_model().artificial_viscosity();
+  if (walls_) {
+    in.noslip = &walls_->noslip_velocity();
+    in.wall_fluid = &walls_->fluid_material();
+  }
+  in.free_slip = free_slip_;
+  in.transport = transport_;
+  in.background = background_;
+  forces_->run(s_, nl_, kernel_, in);
+}
+
+template <int D, class K>
+void Simulation<D, K>::prime() {
+  if (wall_motion_) {
+    Timer tm(timer(WallMotion<D>::kName));
+    wall_motion_->run(t_, transport_);
+  }
+  exchange_and_search();
+  compute_density_and_pressure(0.0);
+  apply_wall_condition();
+  compute_forces();
+}
+
+template <int D, class K>
+void Simulation<D, K>::step(double dt) {
+  {
+    Timer tm(timer("integrate"));
+    kick(s_, 0.5 * dt);
+    if (transport_) set_transport_velocity(s_, *transport_, *background_, 0.5 * dt);
+    drift(s_, transport_ ? *transport_ : s_.v, dt);
+  }
+  t_ += dt;
+  ++step_;
+  if (wall_motion_) {
+    Timer tm(timer(WallMotion<D>::kName));
+    wall_motion_->run(t_, transport_);
+  }
+  exchange_and_search();
+  compute_density_and_pressure(dt);
+  apply_wall_condition();
+  compute_forces();
+  Timer tm(timer("integrate"));
+  kick(s_, 0.5 * dt);
+}
+
+template <int D, class K>
+typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
+  Timer tm(timer("stability_guards"));
+  const auto vmax_dom = detail::to_vec<D>(c_.domain().hi());
+  const auto vmin_dom = detail::to_vec<D>(c_.domain().lo());
+  GuardScan<D> scan = scan_particles<D>(s_, fluids_, mats_, guards_, vmin_dom, vmax_dom, grid_.periodic, step_, t_);
+  std::vector<double> r = {scan.max_speed,
+                           scan.max_density_dev,
+                           scan.violation.empty() ? 0.0 : 1.0,
+                           comm_.root() && opt_.cancel_requested && opt_.cancel_requested() ? 1.0 : 0.0,
+                           opt_.interrupt && opt_.interrupt->load() ? 1.0 : 0.0,
+                           comm_.root() && opt_.checkpoint_requested && opt_.checkpoint_requested() ? 1.0 : 0.0};
+  comm_.max_inplace(r);
+  EndOfStep e;
+  e.max_speed = r[0];
+  e.max_density_dev = r[1];
+  e.violated = r[2] > 0;
+  e.cancel = r[3] > 0;
+  e.interrupt = r[4] > 0;
+  e.checkpoint = r[5] > 0;
+  if (e.violated) e.diagnosis = comm_.first_non_empty(scan.violation);
+  return e;
+}
+
+template <int D, class K>
+void Simulation<D, K>::sample_series() {
+  Timer tm(timer("diagnostics"));
+  const Vec<D> g = fluid_gravity_ && c_.has_gravity() ? detail::to_vec<D>(c_.gravity().acceleration()) : Vec<D>::Zero();
+  const ConservationSample<D> cs = conservation(s_, g, comm_);
+  double dev = 0, vmax = 0;
+  for (std::size_t i = 0; i < s_.owned(); ++i) {
+    if (s_.kind[i] != Kind::kFluid) continue;
+    dev = std::max(dev, std::abs(s_.rho[i] * fluids_[s_.material[i]].inv_rho0 - 1.0));
+    vmax = std::max(vmax, s_.v[i].norm());
+  }
+  dev = comm_.max(dev);
+  vmax = comm_.max(vmax);
+  auto put = [&](const char* n, double v) { result_.append_series(std::string("diagnostics/") + n, {v}); };
+  put("time", t_);
+  put("step", static_cast<double>(step_));
+  put("dt", dt_);
+  put("mass", cs.mass);
+  put("kinetic_energy", cs.kinetic);
+  put("potential_energy", cs.potential);
+  put("max_density_deviation", dev);
+  put("max_speed", vmax);
+  put("imbalance", imbalance_);
+  put("fluid_particles", cs.fluid_particles);
+  result_.append_series("diagnostics/momentum", std::vector<double>(cs.momentum.data(), cs.momentum.data() + D));
+  if (probes_) {
+    Timer tp(timer(Probes<D, K>::kName));
+    const auto values = probes_->sample(s_, nl_, grid_, halo_.my_box(), comm_);
+    for (std::size_t k = 0; k < probes_->sets().size(); ++k) {
+      const std::string base = "probes/" + probes_->sets()[k].name + "/";
+      std::vector<double> pr, rh, ve;
+      const auto& v = values[k];
+      for (std::size_t p = 0; p < probes_->sets()[k].points.size(); ++p) {
+        const std::size_t o = p * Probes<D, K>::kValues;
+        pr.push_back(v[o]);
+        rh.push_back(v[o + 1]);
+        for (int a = 0; a < D; ++a) ve.push_back(v[o + 2 + static_cast<size_t>(a)]);
+      }
+      result_.append_series(base + "time", {t_});
+      result_.append_series(base + "pressure", pr);
+      result_.append_series(base + "density", rh);
+      result_.append_series(base + "velocity", ve);
+    }
+  }
+  next_series_ = t_ + schedule_.series_interval();
+}
+
+template <int D, class K>
+void Simulation<D, K>::write_snapshot() {
+  Timer tm(timer("output"));
+  result_.write_snapshot(s_, t_, step_);
+}
+
+template <int D, class K>
+std::string Simulation<D, K>::write_checkpoint_now() {
+  Timer tm(timer("output"));
+  result_.flush();  // the result file holds every sample up to the checkpoint
+  char name[64];
+  std::snprintf(name, sizeof name, "ckpt_%012lld.h5", static_cast<long long>(step_));
+  const std::string path = opt_.output_dir + "/checkpoints/" + name;
+  std::map<std::string, double> state = {
+      {"time", t_},           {"step", static_cast<double>(step_)},
+      {"dt", dt_},            {"dt0", dt0_},
+      {"next_series", next_series_}};
+  write_checkpoint(comm_, path, s_, state);
+  if (comm_.root()) {
+    // Keep the two newest checkpoints.
+    std::vector<std::filesystem::path> all;
+    for (const auto& e : std::filesystem::directory_iterator(opt_.output_dir + "/checkpoints"))
+      if (e.path().extension() == ".h5") all.push_back(e.path());
+    std::sort(all.begin(), all.end());
+    for (std::size_t k = 0; k + 2 < all.size(); ++k) std::filesystem::remove(all[k]);
+    if (opt_.on_checkpoint) opt_.on_checkpoint(path, step_, t_);
+  }
+  last_checkpoint_ = path;
+  last_checkpoint_wall_ = MPI_Wtime();
+  return path;
+}
+
+template <int D, class K>
+void Simulation<D, K>::report_progress(bool force) {
+  if (!comm_.root()) return;
+  const double now = MPI_Wtime();
+  if (!force && now - last_progress_wall_ < opt_.progress_interval_seconds) return;
+  Progress p;
+  p.step = step_;
+  p.time = t_;
+  p.end_time = schedule_.end_time();
+  p.dt = dt_;
+  p.particles = global_particles_;
+  p.ranks = comm_.size();
+  p.imbalance = imbalance_;
+  p.wall_seconds = now - wall_start_;
+  const double dwall = now - (last_progress_wall_ < 0 ? wall_start_ : last_progress_wall_);
+  if (last_progress_wall_ > -1e299 && dwall > 0) {
+    p.particle_steps_per_second = static_cast<double>(step_ - last_progress_step_) *
+                                  static_cast<double>(global_particles_) / dwall;
+    const double rate = (t_ - last_progress_time_) / dwall;
+    if (rate > 0) p.eta_seconds = (schedule_.end_time() - t_) / rate;
+  }
+  last_progress_wall_ = now;
+  last_progress_step_ = step_;
+  last_progress_time_ = t_;
+  if (!opt_.quiet) {
+    std::printf("step %8lld  t %-11.5g / %-9.4g  dt %-10.3e  N %-9lld  %9.3e particle-steps/s  imbalance %.2f  ETA %s\n",
+                static_cast<long long>(p.step), p.time, p.end_time, p.dt, static_cast<long long>(p.particles),
+                p.particle_steps_per_second, p.imbalance,
+                p.eta_seconds < 0 ? "-" : (std::to_string(static_cast<long long>(p.eta_seconds + 0.5)) + " s").c_str());
+    std::fflush(stdout);
+  }
+  if (opt_.on_progress) opt_.on_progress(p);
+}
+
+template <int D, class K>
+std::map<std::string, std::string> Simulation<D, K>::metadata(const std::string& status) const {
+  std::map<std::string, std::string> m = opt_.metadata;
+  m["case_text"] = opt_.case_text.empty() ? c_.DebugString() : opt_.case_text;
+  m["code_version"] = code_version();
+  m["ranks"] = std::to_string(comm_.size());
+  m["dimension"] = std::to_string(D);
+  m["dx"] = std::to_string(dx_);
+  m["kernel"] = K::kSupport == 3.0 ? "quintic_spline" : "wendland_c2";
+  std::string units;
+  for (const auto& u : units_) units += (units.empty() ? "" : ",") + u;
+  m["active_units"] = units;
+  m["status"] = status;
+  return m;
+}
+
+template <int D, class K>
+void Simulation<D, K>::maybe_rebalance() {
+  const std::int64_t local = static_cast<std::int64_t>(s_.owned());
+  const std::int64_t max = comm_.max(local);
+  const double mean = static_cast<double>(global_particles_) / comm_.size();
+  imbalance_ = mean > 0 ? static_cast<double>(max) / mean : 1.0;
+  if (comm_.size() > 1 && imbalance_ > 1.05) {
+    Timer tm(timer("halo_exchange"));
+    s_.drop_ghosts();
+    decompose_by_histogram();
+    halo_.migrate(s_);
+    const std::int64_t m2 = comm_.max(static_cast<std::int64_t>(s_.owned()));
+    imbalance_ = mean > 0 ? static_cast<double>(m2) / mean : 1.0;
+  }
+}
+
+template <int D, class K>
+std::map<std::string, std::size_t> Simulation<D, K>::memory_by_owner() const {
+  auto m = s_.memory_by_owner();
+  m["neighbor_search"] += nl_.bytes();
+  return m;
+}
+
+template <int D, class K>
+void Simulation<D, K>::start() {
+  wall_start_ = MPI_Wtime();
+  last_checkpoint_wall_ = wall_start_;
+  if (opt_.resume_from.empty()) {
+    build_scene();
+    halo_.migrate(s_);
+    global_particles_ = comm_.sum(static_cast<std::int64_t>(s_.owned()));
+    prime();
+    {
+      // Initial transport velocity and series before the first step.
+      const GuardScan<D> scan = scan_particles<D>(s_, fluids_, mats_, guards_, detail::to_vec<D>(c_.domain().lo()),
+                                               detail::to_vec<D>(c_.domain().hi()), grid_.periodic, 0, 0.0);
+      dt_ = c_.time().fixed_dt() > 0 ? c_.time().fixed_dt() : bound_->dt(comm_.max(scan.max_speed));
+      dt0_ = dt_;
+    }
+    result_.create(metadata("running"));
+    maybe_rebalance();
+    sample_series();
+    write_snapshot();
+    next_output_ = schedule_.first_after(0.0);
+  } else {
+    const auto state = read_checkpoint(comm_, opt_.resume_from, s_);
+    t_ = state.at("time");
+    step_ = static_cast<std::int64_t>(state.at("step"));
+    dt_ = state.at("dt");
+    dt0_ = state.at("dt0");
+    next_series_ = state.at("next_series");
+    decompose_by_histogram();
+    halo_.migrate(s_);
+    global_particles_ = comm_.sum(static_cast<std::int64_t>(s_.owned()));
+    auto meta = metadata("running");
+    meta["resumed_from"] = opt_.resume_from;
+    result_.carry_over(opt_.previous_result, t_, meta);
+    next_output_ = schedule_.first_after(t_);
+    maybe_rebalance();
+  }
+}
+
+template <int D, class K>
+void Simulation<D, K>::advance() {
+  step(schedule_.clip(t_, dt_, next_output_));
+}
+
+template <int D, class K>
+RunOutcome Simulation<D, K>::run() {
+  RunOutcome out;
+  start();
+  report_progress(true);
+  RunStatus status = RunStatus::kCompleted;
+  std::string message;
+  const double ckpt_interval = c_.output().checkpoint_wall_interval();
+  const double max_wall = c_.stop().max_wall_seconds();
+  const double steady = c_.stop().steady_kinetic_energy();
+  while (true) {
+    if (schedule_.finished(t_)) break;
+    if (c_.time().max_steps() > 0 && step_ >= c_.time().max_steps()) {
+      message = "time.max_steps reached";
+      break;
+    }
+    advance();
+    const EndOfStep e = end_of_step_checks();
+    if (e.violated) {
+      status = RunStatus::kUnstable;
+      message = e.diagnosis;
+      break;
+    }
+    if (c_.time().fixed_dt() <= 0) {
+      dt_ = bound_->dt(e.max_speed);
+      if (dt_ < guards_.min_dt_fraction * dt0_) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "time step collapsed to %.3e (< %.3g x initial %.3e, guards.min_dt_fraction) at step %lld, t = %.9g",
+                      dt_, guards_.min_dt_fraction, dt0_, static_cast<long long>(step_), t_);
+        status = RunStatus::kUnstable;
+        message = buf;
+        break;
+      }
+    }
+    if (step_ % 50 == 0) maybe_rebalance();
+    if (t_ >= next_series_ - schedule_.eps()) sample_series();
+    last_step_had_snapshot_ = false;
+    if (schedule_.snapshot_due(t_, next_output_)) {
+      write_snapshot();
+      last_step_had_snapshot_ = true;
+      next_output_ = schedule_.first_after(t_);
+    }
+    report_progress(false);
+    if (e.interrupt) {
+      write_checkpoint_now();
+      status = RunStatus::kInterrupted;
+      message = "interrupted; checkpoint written";
+      break;
+    }
+    if (e.cancel) {
+      if (!last_step_had_snapshot_) write_snapshot();
+      status = RunStatus::kCancelled;
+      message = "cancelled at a step boundary; last state written";
+      break;
+    }
+    const bool ckpt_due = ckpt_interval > 0 && comm_.root() && MPI_Wtime() - last_checkpoint_wall_ >= ckpt_interval;
+    int ckpt_flag = ckpt_due ? 1 : 0;
+    MPI_Bcast(&ckpt_flag, 1, MPI_INT, 0, comm_.raw());
+    if (e.checkpoint || ckpt_flag) write_checkpoint_now();
+    if (max_wall > 0) {
+      int stop = comm_.root() && MPI_Wtime() - wall_start_ >= max_wall ? 1 : 0;
+      MPI_Bcast(&stop, 1, MPI_INT, 0, comm_.raw());
+      if (stop) {
+        if (!last_step_had_snapshot_) write_snapshot();
+        message = "stop.max_wall_seconds reached";
+        break;
+      }
+    }
+    if (steady > 0 && step_ % 20 == 0) {
+      const Vec<D> g = Vec<D>::Zero();
+      const ConservationSample<D> cs = conservation(s_, g, comm_);
+      if (cs.mass > 0 && cs.kinetic / cs.mass < steady) {
+        if (!last_step_had_snapshot_) write_snapshot();
+        message = "steady state reached (stop.steady_kinetic_energy)";
+        break;
+      }
+    }
+    if (step_ % 25 == 0) s_.reorder_owned(nl_.owned_in_cell_order(s_.owned()));
+  }
+  report_progress(true);
+  const char* st = status == RunStatus::kCompleted   ? "completed"
+                   : status == RunStatus::kCancelled ? "cancelled"
+                   : status == RunStatus::kInterrupted ? "interrupted"
+                                                       : "unstable";
+  auto meta = std::map<std::string, std::string>{{"status", st}, {"message", message}};
+  result_.flush();
+  result_.set_meta(meta);
+  out.status = status;
+  out.message = message;
+  out.steps = step_;
+  out.time = t_;
+  out.wall_seconds = MPI_Wtime() - wall_start_;
+  out.unit_seconds = timers_;
+  out.last_checkpoint = last_checkpoint_;
+  out.files = {std::filesystem::absolute(result_.h5_path()).string(),
+               std::filesystem::absolute(result_.xmf_path()).string()};
+  return out;
+}
+
+}  // namespace sph

@@ -1,0 +1,79 @@
+#include "solver/scene/scene_builder.h"
+
+#include <cmath>
+
+#include "case/estimate.h"
+#include "case/lattice.h"
+
+namespace sph {
+
+SceneBuilder::SceneBuilder(const v1::Case& c, const std::vector<MaterialParams>& materials)
+    : c_(c), mats_(materials) {
+  const int d = c.dimension();
+  const double shell = std::ceil(kernel_support_factor(c) - 1e-9) * c.dx();
+  for (const auto& w : c.walls()) walls_.push_back(compile_shape(w.shape(), d, shell));
+  for (const auto& f : c.fluids()) fluids_.push_back(compile_shape(f.shape(), d, shell));
+  for (const auto& m : materials)
+    if (m.fluid) {
+      wall_rho_ = m.rho0;
+      break;
+    }
+}
+
+void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn) const {
+  const int d = c_.dimension();
+  const double dx = c_.dx();
+  const double vol = std::pow(dx, d);
+  LatticeSpec spec{d, dx, to_point(c_.lattice_origin())};
+  Aabb clip{to_point(c_.domain().lo()), to_point(c_.domain().hi())};
+  if (d == 2) clip.lo.z() = clip.hi.z() = 0.0;
+
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    const auto& wall = c_.walls(static_cast<int>(w));
+    SceneParticle p;
+    p.kind = Kind::kWall;
+    p.wall = static_cast<std::uint16_t>(w);
+    p.rho = wall_rho_;
+    p.mass = wall_rho_ * vol;
+    if (!wall.material().empty())
+      p.material = static_cast<std::uint16_t>(material_index(mats_, wall.material()));
+    for_each_lattice_point(*walls_[w], spec, clip, [&](const Point3& x) {
+      for (std::size_t k = 0; k < w; ++k)
+        if (walls_[k]->contains(x)) return;
+      p.x = x;
+      fn(p);
+    });
+  }
+
+  Point3 g = Point3::Zero();
+  if (c_.has_gravity()) g = to_point(c_.gravity().acceleration());
+  for (std::size_t f = 0; f < fluids_.size(); ++f) {
+    const auto& region = c_.fluids(static_cast<int>(f));
+    const int mi = material_index(mats_, region.material());
+    const MaterialParams& m = mats_[static_cast<std::size_t>(mi)];
+    SceneParticle p;
+    p.kind = Kind::kFluid;
+    p.material = static_cast<std::uint16_t>(mi);
+    p.v = to_point(region.initial_velocity());
+    for_each_lattice_point(*fluids_[f], spec, clip, [&](const Point3& x) {
+      for (const auto& w : walls_)
+        if (w->contains(x)) return;
+      for (std::size_t k = 0; k < f; ++k)
+        if (fluids_[k]->contains(x)) return;
+      p.x = x;
+      p.rho = m.rho0;
+      if (region.has_hydrostatic_surface() && g.norm() > 0) {
+        // p = rho0 |g| (surface - height), height measured along -g; the density follows
+        // from the EOS and the mass keeps the lattice volume dx^d.
+        const double height = -g.normalized().dot(x);
+        const double pr = m.rho0 * g.norm() * (region.hydrostatic_surface() - height);
+        const double base = std::max(pr / m.p0 + 1.0, 1e-3);  // p = chi + pr
+        p.rho = m.rho0 * std::pow(base, 1.0 / m.gamma);
+      }
+      p.mass = p.rho * vol;
+      fn(p);
+    });
+  }
+}
+
+}  // namespace sph

@@ -1,0 +1,125 @@
+#include "worker/local_run.h"
+
+#include <mpi.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "case/load.h"
+#include "case/validate.h"
+#include "solver/run/run_case.h"
+
+namespace sph::worker {
+namespace {
+
+std::atomic<bool> g_interrupt{false};
+extern "C" void on_signal(int) { g_interrupt.store(true); }
+
+void usage() {
+  std::fprintf(stderr,
+               "usage: sph-worker --case FILE --out DIR [--resume CHECKPOINT] [--quiet]\n"
+               "       sph-worker --server ADDR [pool options]   (see --help)\n");
+}
+
+// Rank 0 reads the case (point files relative to it are inlined) and broadcasts the text, so
+// ranks on other nodes need no access to the file.
+bool load_on_root(const std::string& path, int rank, std::string& text, std::string& error) {
+  std::int64_t n = 0;
+  if (rank == 0) {
+    try {
+      text = case_to_text(load_case_file(path));
+    } catch (const std::exception& e) {
+      error = e.what();
+      text.clear();
+    }
+    n = error.empty() ? static_cast<std::int64_t>(text.size()) : -1;
+  }
+  MPI_Bcast(&n, 1, MPI_INT64_T, 0, MPI_COMM_WORLD);
+  if (n < 0) return false;
+  text.resize(static_cast<size_t>(n));
+  MPI_Bcast(text.data(), static_cast<int>(n), MPI_CHAR, 0, MPI_COMM_WORLD);
+  return true;
+}
+
+}  // namespace
+
+int run_local(int argc, char** argv) {
+  std::string case_path, out_dir, resume;
+  bool quiet = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&](std::string& v) {
+      if (i + 1 >= argc) return false;
+      v = argv[++i];
+      return true;
+    };
+    bool ok = true;
+    if (a == "--case") ok = next(case_path);
+    else if (a == "--out") ok = next(out_dir);
+    else if (a == "--resume") ok = next(resume);
+    else if (a == "--quiet") quiet = true;
+    else ok = false;
+    if (!ok) {
+      usage();
+      return kExitError;
+    }
+  }
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (case_path.empty() || out_dir.empty()) {
+    if (rank == 0) usage();
+    return kExitError;
+  }
+  std::string text, error;
+  if (!load_on_root(case_path, rank, text, error)) {
+    if (rank == 0) std::fprintf(stderr, "sph-worker: %s\n", error.c_str());
+    return kExitInvalidCase;
+  }
+  const v1::Case c = parse_case_text(text);
+  const auto errors = validate_case(c);
+  if (!errors.empty()) {
+    if (rank == 0) {
+      std::fprintf(stderr, "sph-worker: invalid case %s:\n", case_path.c_str());
+      for (const auto& e : errors) std::fprintf(stderr, "  %s\n", e.to_string().c_str());
+    }
+    return kExitInvalidCase;
+  }
+  std::signal(SIGTERM, on_signal);
+  std::signal(SIGINT, on_signal);
+
+  RunOptions opt;
+  opt.output_dir = std::filesystem::absolute(out_dir).string();
+  opt.resume_from = resume;
+  if (!resume.empty()) opt.previous_result = (std::filesystem::path(resume).parent_path().parent_path() / "result.h5").string();
+  opt.case_text = read_text_file(case_path);
+  opt.metadata["mode"] = "local";
+  opt.metadata["case_file"] = std::filesystem::absolute(case_path).string();
+  opt.interrupt = &g_interrupt;
+  opt.quiet = quiet;
+  const RunOutcome r = run_case(c, MPI_COMM_WORLD, opt);
+  if (rank == 0) {
+    std::printf("%s after %lld steps, t = %.6g, %.1f s wall%s%s\n", to_string(r.status),
+                static_cast<long long>(r.steps), r.time, r.wall_seconds,
+                r.message.empty() ? "" : ": ", r.message.c_str());
+    for (const auto& f : r.files) std::printf("  wrote %s\n", f.c_str());
+    std::fflush(stdout);
+  }
+  switch (r.status) {
+    case RunStatus::kCompleted:
+      return kExitOk;
+    case RunStatus::kUnstable:
+      return kExitUnstable;
+    case RunStatus::kInterrupted:
+    case RunStatus::kCancelled:
+      return kExitInterrupted;
+    case RunStatus::kError:
+      break;
+  }
+  return kExitError;
+}
+
+}  // namespace sph::worker
