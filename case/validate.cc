@@ -277,6 +277,14 @@ class Validator {
     if (!r.has_shape()) error(cat(f, "shape"), "is required");
     else shape(r.shape(), cat(f, "shape"), true);
     vec(r.initial_velocity(), cat(f, "initial_velocity"));
+    if (r.initial_velocity_field().has_taylor_green()) {
+      const auto& tg = r.initial_velocity_field().taylor_green();
+      if (c_.dimension() != 2) error(cat(f, "initial_velocity_field.taylor_green"), "only in 2D cases");
+      positive(tg.wavelength(), cat(f, "initial_velocity_field.taylor_green.wavelength"));
+      if (!finite(tg.amplitude())) error(cat(f, "initial_velocity_field.taylor_green.amplitude"), "must be finite");
+    }
+    if (!(r.position_jitter() >= 0 && r.position_jitter() <= 0.5))
+      error(cat(f, "position_jitter"), "must be in [0, 0.5] (a fraction of dx)");
     if (r.has_hydrostatic_surface()) {
       if (!finite(r.hydrostatic_surface())) error(cat(f, "hydrostatic_surface"), "must be finite");
       if (!c_.has_gravity()) error(cat(f, "hydrostatic_surface"), "needs gravity");

@@ -3,6 +3,7 @@
 // Adams 2013 for the transport-velocity terms):
 //   a_i = 1/m_i sum_j (V_i^2 + V_j^2) [ -p~_ij dW/dr e_ij + eta~_ij u_ij/r_ij dW/dr
 //                                       + 1/2 (A_i + A_j) . grad W ]  + art. viscosity + b_i
+// (for the sign of the artificial viscosity see the pair loop)
 //   p~_ij = (rho_j p_i + rho_i p_j)/(rho_i + rho_j),  eta~_ij = 2 eta_i eta_j/(eta_i + eta_j)
 //   A = rho u (u~ - u)  (transport velocity only)
 // plus the background-pressure acceleration that defines the transport velocity:
@@ -81,9 +82,13 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
           acc += (0.5 * s2) * (rhoi * dui.dot(gradW) * vi + rhoj * duj.dot(gradW) * v[j]);
         }
         if constexpr (kArtVisc) {
+          // Adami 2012 eq. 11 as printed has a leading minus; with grad_a W_ab = W' e_ab that
+          // accelerates approaching particles towards each other. The dissipative sign is
+          // Monaghan's (Pi_ab = -alpha h c v_ab.r_ab / (rho (r^2 + eps h^2)), a -= m_b Pi_ab
+          // grad W), applied to every pair as the paper does.
           const double vr = (vi - v[j]).dot(rij);
           const double cbar = 0.5 * (fi.c + fl[mat[j]].c), rhobar = 0.5 * (rhoi + rhoj);
-          acc_av -= (m[j] * in.alpha * in.h * cbar * vr / (rhobar * (r * r + eps_h2))) * gradW;
+          acc_av += (m[j] * in.alpha * in.h * cbar * vr / (rhobar * (r * r + eps_h2))) * gradW;
         }
       } else {
         // Dummy particle: density from its pressure through this fluid's EOS (eq. 28).

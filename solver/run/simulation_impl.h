@@ -2,6 +2,7 @@
 // Implementation of Simulation<D, K> (included by simulation.h; instantiated in
 // simulation_2d.cc and simulation_3d.cc).
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace sph {
@@ -144,6 +145,9 @@ void Simulation<D, K>::build_units() {
                         "max_density_deviation", "max_speed", "imbalance", "fluid_particles"})
     result_.add_series(std::string("diagnostics/") + n);
   result_.add_series("diagnostics/momentum", {static_cast<std::uint64_t>(D)});
+  // Bounding box of the fluid (e.g. the surge front of a dam break).
+  result_.add_series("diagnostics/fluid_min", {static_cast<std::uint64_t>(D)});
+  result_.add_series("diagnostics/fluid_max", {static_cast<std::uint64_t>(D)});
   if (probes_)
     for (const auto& set : probes_->sets()) {
       const auto n = static_cast<std::uint64_t>(set.points.size());
@@ -331,14 +335,27 @@ void Simulation<D, K>::sample_series() {
   Timer tm(timer("diagnostics"));
   const Vec<D> g = fluid_gravity_ && c_.has_gravity() ? detail::to_vec<D>(c_.gravity().acceleration()) : Vec<D>::Zero();
   const ConservationSample<D> cs = conservation(s_, g, comm_);
-  double dev = 0, vmax = 0;
+  // One reduction for the extremes: [dev, vmax, -min_0.., max_0..].
+  std::vector<double> ext(2 + 2 * D, -std::numeric_limits<double>::infinity());
+  ext[0] = ext[1] = 0.0;
   for (std::size_t i = 0; i < s_.owned(); ++i) {
     if (s_.kind[i] != Kind::kFluid) continue;
-    dev = std::max(dev, std::abs(s_.rho[i] * fluids_[s_.material[i]].inv_rho0 - 1.0));
-    vmax = std::max(vmax, s_.v[i].norm());
+    ext[0] = std::max(ext[0], std::abs(s_.rho[i] * fluids_[s_.material[i]].inv_rho0 - 1.0));
+    ext[1] = std::max(ext[1], s_.v[i].norm());
+    for (int a = 0; a < D; ++a) {
+      ext[2 + static_cast<size_t>(a)] = std::max(ext[2 + static_cast<size_t>(a)], -s_.x[i][a]);
+      ext[2 + D + static_cast<size_t>(a)] = std::max(ext[2 + D + static_cast<size_t>(a)], s_.x[i][a]);
+    }
   }
-  dev = comm_.max(dev);
-  vmax = comm_.max(vmax);
+  comm_.max_inplace(ext);
+  const double dev = ext[0], vmax = ext[1];
+  std::vector<double> fmin(D), fmax(D);
+  for (int a = 0; a < D; ++a) {
+    fmin[static_cast<size_t>(a)] = -ext[2 + static_cast<size_t>(a)];
+    fmax[static_cast<size_t>(a)] = ext[2 + D + static_cast<size_t>(a)];
+  }
+  result_.append_series("diagnostics/fluid_min", fmin);
+  result_.append_series("diagnostics/fluid_max", fmax);
   auto put = [&](const char* n, double v) { result_.append_series(std::string("diagnostics/") + n, {v}); };
   put("time", t_);
   put("step", static_cast<double>(step_));

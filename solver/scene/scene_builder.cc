@@ -1,6 +1,7 @@
 #include "solver/scene/scene_builder.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "case/estimate.h"
 #include "case/lattice.h"
@@ -45,6 +46,15 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
     });
   }
 
+  // SplitMix64: a well-mixed, reproducible pseudo-random value per particle.
+  auto unit_random = [](std::uint64_t k) {
+    k += 0x9E3779B97F4A7C15ull;
+    k = (k ^ (k >> 30)) * 0xBF58476D1CE4E5B9ull;
+    k = (k ^ (k >> 27)) * 0x94D049BB133111EBull;
+    k ^= k >> 31;
+    return static_cast<double>(k >> 11) * 0x1.0p-53 * 2.0 - 1.0;  // [-1, 1)
+  };
+  std::uint64_t counter = 0;
   Point3 g = Point3::Zero();
   if (c_.has_gravity()) g = to_point(c_.gravity().acceleration());
   for (std::size_t f = 0; f < fluids_.size(); ++f) {
@@ -54,18 +64,27 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
     SceneParticle p;
     p.kind = Kind::kFluid;
     p.material = static_cast<std::uint16_t>(mi);
-    p.v = to_point(region.initial_velocity());
     for_each_lattice_point(*fluids_[f], spec, clip, [&](const Point3& x) {
       for (const auto& w : walls_)
         if (w->contains(x)) return;
       for (std::size_t k = 0; k < f; ++k)
         if (fluids_[k]->contains(x)) return;
       p.x = x;
+      if (region.position_jitter() > 0)
+        for (int a = 0; a < d; ++a) p.x[a] += region.position_jitter() * dx * unit_random(3 * counter + static_cast<std::uint64_t>(a));
+      ++counter;
+      p.v = to_point(region.initial_velocity());
+      if (region.initial_velocity_field().has_taylor_green()) {
+        const auto& tg = region.initial_velocity_field().taylor_green();
+        const double k = 2.0 * std::numbers::pi / tg.wavelength();
+        p.v.x() -= tg.amplitude() * std::cos(k * p.x.x()) * std::sin(k * p.x.y());
+        p.v.y() += tg.amplitude() * std::sin(k * p.x.x()) * std::cos(k * p.x.y());
+      }
       p.rho = m.rho0;
       if (region.has_hydrostatic_surface() && g.norm() > 0) {
         // p = rho0 |g| (surface - height), height measured along -g; the density follows
         // from the EOS and the mass keeps the lattice volume dx^d.
-        const double height = -g.normalized().dot(x);
+        const double height = -g.normalized().dot(p.x);
         const double pr = m.rho0 * g.norm() * (region.hydrostatic_surface() - height);
         const double base = std::max(pr / m.p0 + 1.0, 1e-3);  // p = chi + pr
         p.rho = m.rho0 * std::pow(base, 1.0 / m.gamma);

@@ -1,0 +1,31 @@
+#pragma once
+// Helpers for tests: load a case from cases/ and run it in-process.
+#include <filesystem>
+#include <string>
+
+#include "case/load.h"
+#include "solver/run/run_case.h"
+
+namespace sph::test {
+
+inline std::string source_dir() { return SPHD_SOURCE_DIR; }
+
+inline v1::Case load_case(const std::string& name) {
+  return load_case_file(source_dir() + "/cases/" + name + ".textproto");
+}
+
+// A fresh output directory under the build tree, unique per test.
+inline std::string output_dir(const std::string& name) {
+  const std::string dir = std::string(SPHD_BINARY_DIR) + "/test-output/" + name;
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+inline RunOutcome run(const v1::Case& c, const std::string& out_dir, MPI_Comm comm = MPI_COMM_WORLD) {
+  RunOptions o;
+  o.output_dir = out_dir;
+  o.quiet = true;
+  return run_case(c, comm, o);
+}
+
+}  // namespace sph::test

@@ -1,0 +1,150 @@
+// Case loading and validation: every error names the field path and the problem.
+#include <gtest/gtest.h>
+
+#include "case/estimate.h"
+#include "case/load.h"
+#include "case/validate.h"
+
+namespace sph {
+namespace {
+
+const char* kBase = R"(
+name: "t"
+dimension: 2
+dx: 0.1
+domain { lo { x: 0 y: 0 } hi { x: 2 y: 2 } }
+materials { name: "water" density: 1000 eos { sound_speed: 10 } }
+fluids { name: "f" material: "water" shape { box { lo { x: 0.5 y: 0.5 } hi { x: 1.5 y: 1.5 } } } }
+time { end_time: 1 }
+)";
+
+std::vector<FieldError> errors_of(const std::string& extra, ValidationLimits lim = {}) {
+  return validate_case(parse_case_text(std::string(kBase) + extra), lim);
+}
+
+// True if some error has exactly this field and a message containing `what`.
+bool has_error(const std::vector<FieldError>& errs, const std::string& field, const std::string& what) {
+  for (const auto& e : errs)
+    if (e.field == field && e.message.find(what) != std::string::npos) return true;
+  return false;
+}
+
+std::string dump(const std::vector<FieldError>& errs) { return join_errors(errs); }
+
+TEST(CaseValidation, BaseCaseIsValid) {
+  const auto errs = errors_of("");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+}
+
+TEST(CaseValidation, MalformedTextNamesLineAndColumn) {
+  try {
+    parse_case_text("dimension: 2\ndx: 0.1\ndomain { lo { x: 0 ");
+    FAIL() << "expected CaseLoadError";
+  } catch (const CaseLoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CaseValidation, UnknownFieldIsRejected) {
+  try {
+    parse_case_text("dimension: 2\nviscosity_of_the_moon: 3\n");
+    FAIL() << "expected CaseLoadError";
+  } catch (const CaseLoadError& e) {
+    EXPECT_NE(std::string(e.what()).find("viscosity_of_the_moon"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CaseValidation, NegativeDx) {
+  auto c = parse_case_text(kBase);
+  c.set_dx(-0.1);
+  const auto errs = validate_case(c);
+  EXPECT_TRUE(has_error(errs, "dx", "must be > 0")) << dump(errs);
+}
+
+TEST(CaseValidation, MissingMaterialIsNamed) {
+  const auto errs = errors_of(R"(fluids { name: "g" material: "oil" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } })");
+  EXPECT_TRUE(has_error(errs, "fluids[1].material", "unknown material 'oil'")) << dump(errs);
+}
+
+TEST(CaseValidation, WrongPhaseAndDuplicates) {
+  auto errs = errors_of(R"(materials { name: "steel" phase: SOLID density: 7800 }
+materials { name: "water" density: 1 eos { sound_speed: 1 } }
+fluids { name: "g" material: "steel" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } })");
+  EXPECT_TRUE(has_error(errs, "materials[2].name", "duplicate material name 'water'")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "fluids[1].material", "is SOLID, expected FLUID")) << dump(errs);
+}
+
+TEST(CaseValidation, EosNeedsExactlyOneScale) {
+  const auto errs = errors_of(R"(materials { name: "air" density: 1 eos { sound_speed: 3 reference_pressure: 4 } })");
+  EXPECT_TRUE(has_error(errs, "materials[1].eos", "exactly one of sound_speed and reference_pressure")) << dump(errs);
+}
+
+TEST(CaseValidation, TwoDimensionalVectorsMustHaveZeroZ) {
+  const auto errs = errors_of(R"(gravity { acceleration { y: -1 z: -3 } })");
+  EXPECT_TRUE(has_error(errs, "gravity.acceleration.z", "must be 0 in a 2D case")) << dump(errs);
+}
+
+TEST(CaseValidation, ShapeChecksNameNestedPaths) {
+  const auto errs = errors_of(R"(walls { shape { difference { base { box { lo { x: 0 y: 0 } hi { x: 1 y: -1 } } } subtract { ball { radius: -2 } } } } })");
+  EXPECT_TRUE(has_error(errs, "walls[0].shape.difference.base.box.hi.y", "must be greater than box.lo")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "walls[0].shape.difference.subtract[0].ball.radius", "must be > 0")) << dump(errs);
+}
+
+TEST(CaseValidation, DimensionSpecificShapes) {
+  const auto errs = errors_of(R"(walls { shape { cylinder { axis { y: 1 } radius: 1 length: 1 } } })");
+  EXPECT_TRUE(has_error(errs, "walls[0].shape.cylinder", "only in 3D cases")) << dump(errs);
+}
+
+TEST(CaseValidation, NotImplementedUnitsAreRejectedNotIgnored) {
+  auto errs = errors_of(R"(bodies { name: "disk" })");
+  EXPECT_TRUE(has_error(errs, "bodies[0]", "not implemented yet")) << dump(errs);
+  errs = errors_of(R"(thermal { initial_temperature: 300 })");
+  EXPECT_TRUE(has_error(errs, "thermal", "not implemented yet")) << dump(errs);
+  errs = errors_of(R"(contact { stiffness: 1 })");
+  EXPECT_TRUE(has_error(errs, "contact", "not implemented yet")) << dump(errs);
+  errs = errors_of(R"(open_boundaries { name: "in" })");
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0]", "not implemented yet")) << dump(errs);
+}
+
+TEST(CaseValidation, TransportPressureWithoutTransportVelocity) {
+  const auto errs = errors_of(R"(materials { name: "air" density: 1 eos { sound_speed: 3 } transport_background_pressure: 2 })");
+  EXPECT_TRUE(has_error(errs, "materials[1].transport_background_pressure", "fluid_model.transport_velocity is not enabled"))
+      << dump(errs);
+}
+
+TEST(CaseValidation, SizeLimitNamesDx) {
+  auto c = parse_case_text(kBase);
+  const CaseEstimate e = estimate_case(c);
+  EXPECT_NEAR(e.fluid_particles, 100, 0.5);  // 10 x 10 lattice points in the 1 x 1 box
+  c.set_dx(0.001);                            // 1e6 particles
+  const auto errs = validate_case(c, ValidationLimits{1e4});
+  EXPECT_TRUE(has_error(errs, "dx", "case too large")) << dump(errs);
+}
+
+TEST(CaseValidation, EmptyPlacementIsAnError) {
+  auto c = parse_case_text(kBase);
+  c.mutable_fluids(0)->mutable_shape()->mutable_box()->mutable_lo()->set_x(5);
+  c.mutable_fluids(0)->mutable_shape()->mutable_box()->mutable_hi()->set_x(6);
+  const auto errs = validate_case(c);
+  EXPECT_TRUE(has_error(errs, "fluids", "places no particles")) << dump(errs);
+}
+
+TEST(CaseValidation, TimeFunctionTables) {
+  const auto errs = errors_of(R"(walls { shape { box { lo { x: 0 y: 0 } hi { x: 2 y: 0.2 } } } motion { velocity_x { piecewise_linear { times: 0 times: 0 values: 1 } } } })");
+  EXPECT_TRUE(has_error(errs, "walls[0].motion.velocity_x.piecewise_linear.values", "as many values as times")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "walls[0].motion.velocity_x.piecewise_linear.times[1]", "strictly increasing")) << dump(errs);
+}
+
+TEST(CaseValidation, EveryShippedCaseIsValid) {
+  for (const char* name : {"poiseuille_2d", "couette_2d", "hydrostatic_tank_2d", "hydrostatic_wedge_2d",
+                           "hydrostatic_cylinder_3d", "free_fall_tank_2d", "dambreak_2d", "dambreak_martin_moyce_2d",
+                           "colagrossi_dambreak_2d", "rotating_rippled_cylinder_2d", "cylinder_lattice_2d",
+                           "taylor_green_2d"}) {
+    const auto c = load_case_file(std::string(SPHD_SOURCE_DIR) + "/cases/" + name + ".textproto");
+    const auto errs = validate_case(c);
+    EXPECT_TRUE(errs.empty()) << name << ": " << dump(errs);
+  }
+}
+
+}  // namespace
+}  // namespace sph

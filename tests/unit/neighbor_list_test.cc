@@ -1,0 +1,95 @@
+// The cell-linked neighbour list (with periodic ghosts from the halo on one rank) against a
+// brute-force search with minimum-image distances.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+
+#include "solver/core/neighbor_list.h"
+#include "solver/parallel/halo.h"
+
+namespace sph {
+namespace {
+
+template <int D>
+void check_against_brute_force(const std::array<bool, D>& periodic, int seed) {
+  const double rc = 0.3;
+  Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Constant(1.7);
+  CellGrid<D> grid(lo, hi, rc, periodic);
+  Comm comm(MPI_COMM_WORLD);
+  ASSERT_EQ(comm.size(), 1);
+  Halo<D> halo(grid, comm);
+  std::vector<std::int64_t> counts(static_cast<size_t>(grid.total()), 1);
+  halo.set_decomposition(Decomposition<D>(grid, 1, counts));
+
+  ParticleStore<D> s;
+  const int n = D == 2 ? 600 : 1500;
+  s.resize(static_cast<size_t>(n), static_cast<size_t>(n));
+  std::mt19937 rng(static_cast<unsigned>(seed));
+  std::uniform_real_distribution<double> u(0.0, 1.7);
+  for (int i = 0; i < n; ++i) {
+    for (int a = 0; a < D; ++a) s.x[static_cast<size_t>(i)][a] = u(rng);
+    s.kind[static_cast<size_t>(i)] = Kind::kFluid;
+    s.id[static_cast<size_t>(i)] = i;
+  }
+  halo.migrate(s);
+  halo.build_ghosts(s);
+  NeighborList<D> nl;
+  nl.build(s, grid, halo.ghost_box(), rc);
+
+  for (std::size_t i = 0; i < s.owned(); ++i) {
+    std::multiset<std::int64_t> expect, got;
+    for (std::size_t j = 0; j < s.owned(); ++j) {
+      if (j == i) continue;
+      Vec<D> d = s.x[i] - s.x[j];
+      for (int a = 0; a < D; ++a)
+        if (periodic[a]) d[a] -= 1.7 * std::round(d[a] / 1.7);
+      if (d.norm() < rc) expect.insert(s.id[j]);
+    }
+    for (const std::uint32_t* j = nl.begin(i); j != nl.end(i); ++j) {
+      EXPECT_LT((s.x[i] - s.x[*j]).norm(), rc);
+      got.insert(s.id[*j]);
+    }
+    ASSERT_EQ(got, expect) << "particle " << s.id[i];
+  }
+}
+
+TEST(NeighborList, MatchesBruteForce2D) { check_against_brute_force<2>({false, false}, 1); }
+TEST(NeighborList, MatchesBruteForce2DPeriodic) { check_against_brute_force<2>({true, true}, 2); }
+TEST(NeighborList, MatchesBruteForce3DPeriodicX) { check_against_brute_force<3>({true, false, false}, 3); }
+
+TEST(NeighborList, OrderIsCanonical) {
+  // The same particles stored in two different orders give the same neighbour id sequences.
+  CellGrid<2> grid(Vec<2>(0, 0), Vec<2>(1, 1), 0.25, {false, false});
+  Comm comm(MPI_COMM_WORLD);
+  Halo<2> halo(grid, comm);
+  std::vector<std::int64_t> counts(static_cast<size_t>(grid.total()), 1);
+  halo.set_decomposition(Decomposition<2>(grid, 1, counts));
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec<2>> pos(300);
+  for (auto& p : pos) p = Vec<2>(u(rng), u(rng));
+  auto sequences = [&](bool reversed) {
+    ParticleStore<2> s;
+    s.resize(pos.size(), pos.size());
+    for (std::size_t k = 0; k < pos.size(); ++k) {
+      const std::size_t i = reversed ? pos.size() - 1 - k : k;
+      s.x[i] = pos[k];
+      s.id[i] = static_cast<std::int64_t>(k);
+      s.kind[i] = Kind::kFluid;
+    }
+    halo.build_ghosts(s);
+    NeighborList<2> nl;
+    nl.build(s, grid, halo.ghost_box(), 0.25);
+    std::vector<std::vector<std::int64_t>> out(pos.size());
+    for (std::size_t i = 0; i < s.owned(); ++i)
+      for (const std::uint32_t* j = nl.begin(i); j != nl.end(i); ++j)
+        out[static_cast<size_t>(s.id[i])].push_back(s.id[*j]);
+    return out;
+  };
+  EXPECT_EQ(sequences(false), sequences(true));
+}
+
+}  // namespace
+}  // namespace sph
