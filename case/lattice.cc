@@ -41,7 +41,7 @@ void walk(const Shape& shape, const LatticeSpec& s, const Aabb& clip, double spa
         Point3 p(s.origin.x() + (static_cast<double>(i) + 0.5) * spacing,
                  s.origin.y() + (static_cast<double>(j) + 0.5) * spacing,
                  s.dim == 3 ? s.origin.z() + (static_cast<double>(k) + 0.5) * spacing : 0.0);
-        if (shape.contains(p)) fn(p);
+        if (inside_clip(p, clip, s.dim) && shape.contains(p)) fn(p);
       }
 }
 

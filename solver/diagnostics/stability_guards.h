@@ -58,7 +58,7 @@ GuardScan<D> scan_particles(const ParticleStore<D>& s, const std::vector<FluidCo
       continue;
     }
     for (int a = 0; a < D; ++a)
-      if (!periodic[a] && (x[a] < lo[a] || x[a] > hi[a])) {
+      if (!periodic[a] && (x[a] < lo[a] - 1e-9 * (hi[a] - lo[a]) || x[a] > hi[a] + 1e-9 * (hi[a] - lo[a]))) {
         char buf[96];
         std::snprintf(buf, sizeof buf, "particle left the domain along %c (domain [%g, %g])", "xyz"[a], lo[a], hi[a]);
         fail(i, buf);

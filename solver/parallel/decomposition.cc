@@ -24,40 +24,57 @@ int Decomposition<D>::build(const CellGrid<D>& grid, const std::vector<std::int6
     boxes_[static_cast<size_t>(r0)] = box;
     return me;
   }
-  // Split the longest axis that still has at least two cells.
-  int axis = -1;
-  for (int a = 0; a < D; ++a)
-    if (box.hi[a] - box.lo[a] >= 2 && (axis < 0 || box.hi[a] - box.lo[a] > box.hi[axis] - box.lo[axis]))
-      axis = a;
-  if (axis < 0) throw std::runtime_error("domain has fewer cells than ranks: use fewer ranks");
-  // Particle count per slab along `axis` within the box.
-  const int len = box.hi[axis] - box.lo[axis];
-  std::vector<double> slab(static_cast<size_t>(len), 0.0);
-  ICoord<D> c = box.lo;
-  const long long cells = box.cells();
-  for (long long k = 0; k < cells; ++k) {
-    // +1 per cell keeps empty regions from collapsing a split onto one side.
-    slab[static_cast<size_t>(c[axis] - box.lo[axis])] +=
-        static_cast<double>(counts[static_cast<size_t>(grid.linear(c))]) + 1e-3;
-    for (int a = 0; a < D; ++a) {
-      if (++c[a] < box.hi[a]) break;
-      c[a] = box.lo[a];
-    }
-  }
+  // Try every axis with at least two cell slabs and keep the split closest to the target
+  // share (the longest axis wins near-ties, which keeps boxes compact). Trying all axes
+  // matters when the particles pile up: a water column at a wall is split across its height.
   const int nl = (r1 - r0) / 2;
-  const double total = std::accumulate(slab.begin(), slab.end(), 0.0);
-  const double target = total * nl / (r1 - r0);
-  // Choose the split with the smallest imbalance; leave >= 1 slab per side.
-  double acc = 0, best = 1e300;
-  int split = box.lo[axis] + 1;
-  for (int s = 1; s < len; ++s) {
-    acc += slab[static_cast<size_t>(s - 1)];
-    const double err = std::abs(acc - target);
-    if (err < best) {
-      best = err;
-      split = box.lo[axis] + s;
+  struct Candidate {
+    int axis, split, len;
+    double err;  // |share - target| / total
+  };
+  std::vector<Candidate> cands;
+  for (int a = 0; a < D; ++a) {
+    const int len = box.hi[a] - box.lo[a];
+    if (len < 2) continue;
+    std::vector<double> slab(static_cast<size_t>(len), 0.0);
+    ICoord<D> c = box.lo;
+    const long long cells = box.cells();
+    for (long long k = 0; k < cells; ++k) {
+      // A small weight per cell keeps empty regions from collapsing a split onto one side.
+      slab[static_cast<size_t>(c[a] - box.lo[a])] +=
+          static_cast<double>(counts[static_cast<size_t>(grid.linear(c))]) + 1e-3;
+      for (int b = 0; b < D; ++b) {
+        if (++c[b] < box.hi[b]) break;
+        c[b] = box.lo[b];
+      }
     }
+    const double total = std::accumulate(slab.begin(), slab.end(), 0.0);
+    const double target = total * nl / (r1 - r0);
+    Candidate best{a, box.lo[a] + 1, len, 1e300};
+    double acc = 0;
+    for (int sp = 1; sp < len; ++sp) {
+      acc += slab[static_cast<size_t>(sp - 1)];
+      const double err = std::abs(acc - target) / total;
+      if (err < best.err) {
+        best.err = err;
+        best.split = box.lo[a] + sp;
+      }
+    }
+    cands.push_back(best);
   }
+  int axis = -1, split = 0;
+  if (!cands.empty()) {
+    double min_err = 1e300;
+    for (const auto& c : cands) min_err = std::min(min_err, c.err);
+    int best_len = -1;
+    for (const auto& c : cands)
+      if (c.err <= min_err + 0.005 && c.len > best_len) {
+        best_len = c.len;
+        axis = c.axis;
+        split = c.split;
+      }
+  }
+  if (axis < 0) throw std::runtime_error("domain has fewer cells than ranks: use fewer ranks");
   CellBox<D> lb = box, rb = box;
   lb.hi[axis] = split;
   rb.lo[axis] = split;

@@ -573,7 +573,7 @@ RunOutcome Simulation<D, K>::run() {
         break;
       }
     }
-    if (step_ % 50 == 0) maybe_rebalance();
+    if (step_ % 20 == 0) maybe_rebalance();
     if (t_ >= next_series_ - schedule_.eps()) sample_series();
     last_step_had_snapshot_ = false;
     if (schedule_.snapshot_due(t_, next_output_)) {
