@@ -53,14 +53,26 @@ class Simulation {
   // Access for tests and benchmarks.
   ParticleStore<D>& particles() { return s_; }
   const std::map<std::string, double>& unit_seconds() const { return timers_; }
-  // Advances one step (after start()); returns the reduced end-of-step checks.
+  // Builds (or resumes) the run; then step() advances one checked step: the time step for
+  // the next step is set, the decomposition rebalanced and memory reordered as needed.
   void start();
-  void advance();
+  struct StepReport {
+    bool violated = false, cancel = false, interrupt = false, checkpoint = false, out_of_time = false;
+    std::string diagnosis;
+  };
+  StepReport step();
   double time() const { return t_; }
   std::int64_t steps() const { return step_; }
   double dt() const { return dt_; }
   std::size_t pairs() const { return nl_.pairs(); }
   std::map<std::string, std::size_t> memory_by_owner() const;
+  // Seconds spent in MPI communication (halo exchanges and step reductions).
+  double communication_seconds() {
+    comm_seconds_ += halo_.take_comm_seconds();
+    return comm_seconds_;
+  }
+  double imbalance() const { return imbalance_; }
+  std::int64_t global_particles() const { return global_particles_; }
 
  private:
   class Timer {
@@ -82,13 +94,15 @@ class Simulation {
   void compute_density_and_pressure(double dt);
   void apply_wall_condition();
   void compute_forces();
-  void step(double dt);
+  void integrate_step(double dt);
   struct EndOfStep {
     double max_speed = 0, max_density_dev = 0;
-    bool violated = false, cancel = false, interrupt = false, checkpoint = false;
+    bool violated = false, cancel = false, interrupt = false, checkpoint = false, out_of_time = false;
     std::string diagnosis;
   };
+  // One reduction per step carries the time-step input and every stop/checkpoint decision.
   EndOfStep end_of_step_checks();
+  bool checkpoint_due() const;
   void sample_series();
   void write_snapshot();
   std::string write_checkpoint_now();
@@ -141,6 +155,7 @@ class Simulation {
   std::int64_t global_particles_ = 0;
   std::string last_checkpoint_;
   bool last_step_had_snapshot_ = false;
+  double comm_seconds_ = 0;
 };
 
 }  // namespace sph

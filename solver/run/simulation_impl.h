@@ -285,7 +285,7 @@ void Simulation<D, K>::prime() {
 }
 
 template <int D, class K>
-void Simulation<D, K>::step(double dt) {
+void Simulation<D, K>::integrate_step(double dt) {
   {
     Timer tm(timer("integrate"));
     kick(s_, 0.5 * dt);
@@ -307,6 +307,13 @@ void Simulation<D, K>::step(double dt) {
 }
 
 template <int D, class K>
+bool Simulation<D, K>::checkpoint_due() const {
+  const double every = c_.output().checkpoint_wall_interval();
+  return (opt_.checkpoint_requested && opt_.checkpoint_requested()) ||
+         (every > 0 && MPI_Wtime() - last_checkpoint_wall_ >= every);
+}
+
+template <int D, class K>
 typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
   Timer tm(timer("stability_guards"));
   const auto vmax_dom = detail::to_vec<D>(c_.domain().hi());
@@ -317,8 +324,14 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
                            scan.violation.empty() ? 0.0 : 1.0,
                            comm_.root() && opt_.cancel_requested && opt_.cancel_requested() ? 1.0 : 0.0,
                            opt_.interrupt && opt_.interrupt->load() ? 1.0 : 0.0,
-                           comm_.root() && opt_.checkpoint_requested && opt_.checkpoint_requested() ? 1.0 : 0.0};
+                           comm_.root() && checkpoint_due() ? 1.0 : 0.0,
+                           comm_.root() && c_.stop().max_wall_seconds() > 0 &&
+                                   MPI_Wtime() - wall_start_ >= c_.stop().max_wall_seconds()
+                               ? 1.0
+                               : 0.0};
+  const double t0 = MPI_Wtime();
   comm_.max_inplace(r);
+  comm_seconds_ += MPI_Wtime() - t0;
   EndOfStep e;
   e.max_speed = r[0];
   e.max_density_dev = r[1];
@@ -326,6 +339,7 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
   e.cancel = r[3] > 0;
   e.interrupt = r[4] > 0;
   e.checkpoint = r[5] > 0;
+  e.out_of_time = r[6] > 0;
   if (e.violated) e.diagnosis = comm_.first_non_empty(scan.violation);
   return e;
 }
@@ -535,8 +549,25 @@ void Simulation<D, K>::start() {
 }
 
 template <int D, class K>
-void Simulation<D, K>::advance() {
-  step(schedule_.clip(t_, dt_, next_output_));
+typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
+  integrate_step(schedule_.clip(t_, dt_, next_output_));
+  const EndOfStep e = end_of_step_checks();
+  StepReport rep{e.violated, e.cancel, e.interrupt, e.checkpoint, e.out_of_time, e.diagnosis};
+  if (e.violated) return rep;
+  if (c_.time().fixed_dt() <= 0) {
+    dt_ = bound_->dt(e.max_speed);
+    if (dt_ < guards_.min_dt_fraction * dt0_) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "time step collapsed to %.3e (< %.3g x initial %.3e, guards.min_dt_fraction) at step %lld, t = %.9g",
+                    dt_, guards_.min_dt_fraction, dt0_, static_cast<long long>(step_), t_);
+      rep.violated = true;
+      rep.diagnosis = buf;
+      return rep;
+    }
+  }
+  if (step_ % 20 == 0) maybe_rebalance();
+  return rep;
 }
 
 template <int D, class K>
@@ -546,8 +577,6 @@ RunOutcome Simulation<D, K>::run() {
   report_progress(true);
   RunStatus status = RunStatus::kCompleted;
   std::string message;
-  const double ckpt_interval = c_.output().checkpoint_wall_interval();
-  const double max_wall = c_.stop().max_wall_seconds();
   const double steady = c_.stop().steady_kinetic_energy();
   while (true) {
     if (schedule_.finished(t_)) break;
@@ -555,25 +584,12 @@ RunOutcome Simulation<D, K>::run() {
       message = "time.max_steps reached";
       break;
     }
-    advance();
-    const EndOfStep e = end_of_step_checks();
+    const StepReport e = step();
     if (e.violated) {
       status = RunStatus::kUnstable;
       message = e.diagnosis;
       break;
     }
-    if (c_.time().fixed_dt() <= 0) {
-      dt_ = bound_->dt(e.max_speed);
-      if (dt_ < guards_.min_dt_fraction * dt0_) {
-        char buf[200];
-        std::snprintf(buf, sizeof buf, "time step collapsed to %.3e (< %.3g x initial %.3e, guards.min_dt_fraction) at step %lld, t = %.9g",
-                      dt_, guards_.min_dt_fraction, dt0_, static_cast<long long>(step_), t_);
-        status = RunStatus::kUnstable;
-        message = buf;
-        break;
-      }
-    }
-    if (step_ % 20 == 0) maybe_rebalance();
     if (t_ >= next_series_ - schedule_.eps()) sample_series();
     last_step_had_snapshot_ = false;
     if (schedule_.snapshot_due(t_, next_output_)) {
@@ -594,18 +610,11 @@ RunOutcome Simulation<D, K>::run() {
       message = "cancelled at a step boundary; last state written";
       break;
     }
-    const bool ckpt_due = ckpt_interval > 0 && comm_.root() && MPI_Wtime() - last_checkpoint_wall_ >= ckpt_interval;
-    int ckpt_flag = ckpt_due ? 1 : 0;
-    MPI_Bcast(&ckpt_flag, 1, MPI_INT, 0, comm_.raw());
-    if (e.checkpoint || ckpt_flag) write_checkpoint_now();
-    if (max_wall > 0) {
-      int stop = comm_.root() && MPI_Wtime() - wall_start_ >= max_wall ? 1 : 0;
-      MPI_Bcast(&stop, 1, MPI_INT, 0, comm_.raw());
-      if (stop) {
-        if (!last_step_had_snapshot_) write_snapshot();
-        message = "stop.max_wall_seconds reached";
-        break;
-      }
+    if (e.checkpoint) write_checkpoint_now();
+    if (e.out_of_time) {
+      if (!last_step_had_snapshot_) write_snapshot();
+      message = "stop.max_wall_seconds reached";
+      break;
     }
     if (steady > 0 && step_ % 20 == 0) {
       const Vec<D> g = Vec<D>::Zero();

@@ -1,0 +1,150 @@
+// Solver throughput benchmark (not a test): builds a dam-break scene of about N fluid
+// particles in 2D or 3D, runs S steps and prints particle-steps/s, pair interactions/s,
+// bytes per particle, the time share of each physics unit and of communication.
+// Run under mpirun for the parallel numbers (tests/bench/scaling.sh drives that).
+//
+//   bench_solver [--dim 2|3] [--particles N] [--steps S] [--kernel quintic|wendland]
+#include <mpi.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "solver/core/kernel.h"
+#include "solver/run/simulation.h"
+
+namespace {
+
+sph::v1::Vec3 vec(double x, double y, double z) {
+  sph::v1::Vec3 v;
+  v.set_x(x);
+  v.set_y(y);
+  v.set_z(z);
+  return v;
+}
+
+// Adami 2012 dam break (L = H = 1, tank 4 x 2 [x 1 in 3D]), dx chosen for ~n fluid particles.
+sph::v1::Case dam_break(int dim, double n, bool wendland) {
+  sph::v1::Case c;
+  c.set_name("bench_dambreak");
+  c.set_dimension(dim);
+  const double depth = dim == 3 ? 1.0 : 0.0;
+  const double dx = dim == 2 ? 1.0 / std::sqrt(n) : std::cbrt(depth / n);
+  c.set_dx(dx);
+  c.set_kernel(wendland ? sph::v1::WENDLAND_C2 : sph::v1::QUINTIC_SPLINE);
+  const double pad = 4 * dx;
+  *c.mutable_domain()->mutable_lo() = vec(-pad, -pad, dim == 3 ? -pad : 0);
+  *c.mutable_domain()->mutable_hi() = vec(4 + pad, 2 + pad, dim == 3 ? depth + pad : 0);
+  auto* m = c.add_materials();
+  m->set_name("water");
+  m->set_density(1);
+  m->mutable_eos()->set_kind(sph::v1::TAIT);
+  m->mutable_eos()->set_sound_speed(20);
+  auto* f = c.add_fluids();
+  f->set_name("column");
+  f->set_material("water");
+  *f->mutable_shape()->mutable_box()->mutable_lo() = vec(0, 0, 0);
+  *f->mutable_shape()->mutable_box()->mutable_hi() = vec(1, 1, depth);
+  auto* w = c.add_walls();
+  w->set_name("tank");
+  w->set_free_slip(true);
+  auto* inner = w->mutable_shape()->mutable_shell()->mutable_inner()->mutable_box();
+  *inner->mutable_lo() = vec(0, 0, 0);
+  *inner->mutable_hi() = vec(4, 2, depth);
+  c.mutable_fluid_model()->set_density(sph::v1::CONTINUITY);
+  c.mutable_fluid_model()->set_artificial_viscosity(0.1);
+  *c.mutable_gravity()->mutable_acceleration() = vec(0, -1, 0);
+  c.mutable_time()->set_end_time(100);
+  return c;
+}
+
+template <int D, class K>
+void bench(const sph::v1::Case& c, int steps, MPI_Comm comm) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  sph::RunOptions o;
+  o.output_dir = (std::filesystem::temp_directory_path() / ("sphd-bench-" + std::to_string(::getpid()))).string();
+  o.output_dir = sph::Comm(comm).broadcast(o.output_dir);  // rank 0's pid names the directory
+  o.quiet = true;
+  sph::Simulation<D, K> sim(c, sph::Comm(comm), o);
+  const double t_setup = MPI_Wtime();
+  sim.start();
+  const double setup = MPI_Wtime() - t_setup;
+  for (int k = 0; k < 5; ++k) sim.step();  // warm-up: first neighbour lists, page faults
+  const auto units0 = sim.unit_seconds();
+  const double comm0 = sim.communication_seconds();
+  MPI_Barrier(comm);
+  const double t0 = MPI_Wtime();
+  for (int k = 0; k < steps; ++k) {
+    const auto r = sim.step();
+    if (r.violated) {
+      if (rank == 0) std::printf("run became unstable: %s\n", r.diagnosis.c_str());
+      break;
+    }
+  }
+  MPI_Barrier(comm);
+  const double wall = MPI_Wtime() - t0;
+  const double comm_s = sim.communication_seconds() - comm0;
+  double pairs = static_cast<double>(sim.pairs());
+  MPI_Allreduce(MPI_IN_PLACE, &pairs, 1, MPI_DOUBLE, MPI_SUM, comm);
+  double bytes = 0;
+  for (const auto& [owner, b] : sim.memory_by_owner()) bytes += static_cast<double>(b);
+  MPI_Allreduce(MPI_IN_PLACE, &bytes, 1, MPI_DOUBLE, MPI_SUM, comm);
+  double comm_max = comm_s;
+  MPI_Allreduce(MPI_IN_PLACE, &comm_max, 1, MPI_DOUBLE, MPI_MAX, comm);
+  const double n = static_cast<double>(sim.global_particles());
+  double nf = 0;
+  for (std::size_t i = 0; i < sim.particles().owned(); ++i) nf += sim.particles().kind[i] == sph::Kind::kFluid ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &nf, 1, MPI_DOUBLE, MPI_SUM, comm);
+  if (rank == 0) {
+    std::printf("bench_solver dim=%d kernel=%s ranks=%d particles=%.0f (dx=%.4g) steps=%d setup=%.2fs\n", D,
+                K::kSupport == 3.0 ? "quintic" : "wendland", size, n, c.dx(), steps, setup);
+    std::printf("  time/step          %10.3f ms\n", 1e3 * wall / steps);
+    std::printf("  particle-steps/s   %10.3e  (%.3e per rank; all particles, walls included)\n", n * steps / wall,
+                n * steps / wall / size);
+    std::printf("  fluid p-steps/s    %10.3e  (%.3e per rank; %.0f fluid particles)\n", nf * steps / wall,
+                nf * steps / wall / size, nf);
+    std::printf("  pair interactions  %10.3e /s  (%.1f neighbours per particle)\n", pairs * steps / wall, pairs / n);
+    std::printf("  memory             %10.0f bytes/particle\n", bytes / n);
+    std::printf("  communication      %10.1f %% of step time (rank 0), %.1f %% (slowest rank)\n",
+                100 * comm_s / wall, 100 * comm_max / wall);
+    std::printf("  imbalance          %10.3f (largest rank / mean)\n", sim.imbalance());
+    std::printf("  time per unit (rank 0):\n");
+    for (const auto& [name, sec] : sim.unit_seconds()) {
+      const auto it = units0.find(name);
+      const double d = sec - (it == units0.end() ? 0.0 : it->second);
+      std::printf("    %-22s %6.1f %%\n", name.c_str(), 100 * d / wall);
+    }
+    std::fflush(stdout);
+    std::filesystem::remove_all(o.output_dir);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  int dim = 2, steps = 50;
+  double particles = 20000;
+  bool wendland = false;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i], v = argv[i + 1];
+    if (a == "--dim") dim = std::stoi(v);
+    else if (a == "--particles") particles = std::stod(v);
+    else if (a == "--steps") steps = std::stoi(v);
+    else if (a == "--kernel") wendland = v == "wendland";
+  }
+  const sph::v1::Case c = dam_break(dim, particles, wendland);
+  if (dim == 2) {
+    if (wendland) bench<2, sph::WendlandC2<2>>(c, steps, MPI_COMM_WORLD);
+    else bench<2, sph::QuinticSpline<2>>(c, steps, MPI_COMM_WORLD);
+  } else {
+    if (wendland) bench<3, sph::WendlandC2<3>>(c, steps, MPI_COMM_WORLD);
+    else bench<3, sph::QuinticSpline<3>>(c, steps, MPI_COMM_WORLD);
+  }
+  MPI_Finalize();
+  return 0;
+}
