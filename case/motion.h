@@ -18,6 +18,12 @@ class MotionPath {
   Point3 velocity(const Point3& x0, double t) const;
   Point3 acceleration(const Point3& x0, double t) const;
   Point3 center(double t) const;
+  // Rotation angle about the axis since t = 0, and the axis.
+  double angle(double t) const { return omega_.integral(t); }
+  const Point3& axis() const { return axis_; }
+  // Angular velocity and acceleration (about the axis).
+  double angular_velocity(double t) const { return omega_.value(t); }
+  double angular_acceleration(double t) const { return omega_.derivative(t); }
 
  private:
   Point3 translation(double t) const;

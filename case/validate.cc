@@ -306,12 +306,45 @@ class Validator {
       error(cat(f, "concentration"), "not implemented yet: concentration diffusion");
   }
 
-  void body(const v1::RigidBody&, const std::string& f) {
-    error(f, "not implemented yet: rigid bodies");
+  void body(const v1::RigidBody& b, const std::string& f) {
+    if (!b.has_shape()) error(cat(f, "shape"), "is required");
+    else shape(b.shape(), cat(f, "shape"), true);
+    material_ref(b.material(), v1::SOLID, cat(f, "material"), true);
+    if (!b.name().empty() && !body_names_.insert(b.name()).second)
+      error(cat(f, "name"), "duplicate body name '" + b.name() + "'");
+    vec(b.initial_velocity(), cat(f, "initial_velocity"));
+    const auto& w = b.initial_angular_velocity();  // 2D: the z component is the rotation
+    if (!finite(w.x()) || !finite(w.y()) || !finite(w.z()))
+      error(cat(f, "initial_angular_velocity"), "must be finite");
+    if (c_.dimension() == 2 && (b.initial_angular_velocity().x() != 0 || b.initial_angular_velocity().y() != 0))
+      error(cat(f, "initial_angular_velocity"), "a 2D body rotates about z only (x and y must be 0)");
+    if (b.motion_type() == v1::PRESCRIBED) {
+      if (!b.has_motion()) error(cat(f, "motion"), "a PRESCRIBED body needs a motion");
+      else motion(b.motion(), cat(f, "motion"));
+    } else if (b.has_motion()) {
+      error(cat(f, "motion"), "only used with motion_type: PRESCRIBED");
+    }
+    if (b.body_force() == v1::BUOYANCY_REDUCED) {
+      material_ref(b.buoyancy_fluid(), v1::FLUID, cat(f, "buoyancy_fluid"), true);
+      if (!c_.has_gravity()) error(cat(f, "body_force"), "BUOYANCY_REDUCED needs gravity");
+    } else if (!b.buoyancy_fluid().empty()) {
+      error(cat(f, "buoyancy_fluid"), "only used with body_force: BUOYANCY_REDUCED");
+    }
+    if (b.has_initial_temperature()) error(cat(f, "initial_temperature"), "not implemented yet: heat conduction");
+    if (b.has_initial_concentration())
+      error(cat(f, "initial_concentration"), "not implemented yet: concentration diffusion");
+  }
+
+  void contact() {
+    const auto& k = c_.contact();
+    positive(k.stiffness(), "contact.stiffness");
+    non_negative(k.damping(), "contact.damping");
+    if (k.has_friction()) error("contact.friction", "not implemented yet: tangential (Coulomb) friction");
+    if (c_.bodies_size() == 0) error("contact", "contact is configured but the case has no rigid bodies");
   }
 
   void not_implemented() {
-    if (c_.has_contact()) error("contact", "not implemented yet: rigid-body contact");
+    if (c_.has_contact()) contact();
     for (int i = 0; i < c_.phase_transitions_size(); ++i)
       error(idx("phase_transitions", i), "not implemented yet: phase transitions");
     if (c_.has_thermal()) error("thermal", "not implemented yet: heat conduction");
@@ -334,6 +367,8 @@ class Validator {
     if (t.has_cfl_factor() && (!(t.cfl_factor() > 0) || t.cfl_factor() > 2))
       error("time.cfl_factor", "must be in (0, 2] (got " + num(t.cfl_factor()) + ")");
     non_negative(t.fixed_dt(), "time.fixed_dt");
+    if (c_.fluids_size() == 0 && !(t.fixed_dt() > 0))
+      error("time.fixed_dt", "is required when the case has no fluid (the bound of Fuchs 2021 eq. 41 needs a sound speed)");
     if (t.max_steps() < 0) error("time.max_steps", "must be >= 0");
     const auto& o = c_.output();
     non_negative(o.interval(), "output.interval");
@@ -377,6 +412,7 @@ class Validator {
   std::vector<FieldError> errors_;
   std::set<std::string> names_;
   std::map<std::string, v1::MaterialPhase> phase_;
+  std::set<std::string> body_names_;
   bool dim_ok_ = true;
 };
 

@@ -1,12 +1,14 @@
 #include "solver/core/neighbor_list.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace sph {
 
 template <int D>
 void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
-                            const CellBox<D>& box, double rc) {
+                            const CellBox<D>& box, double rc, const ContactQuery* contact) {
   box_ = box;
   std::size_t ncell = 1;
   for (int a = 0; a < D; ++a) {
@@ -68,18 +70,24 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
   }
 
   const double rc2 = rc * rc;
+  const double cr2 = contact ? contact->range * contact->range : 0.0;
   const std::size_t owned = s.owned();
   start_.resize(owned + 1);
   nbr_.clear();
   start_[0] = 0;
+  contact_start_.assign(owned + 1, 0);
+  contact_nbr_.clear();
+  min_contact_ = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < owned; ++i) {
     const long long ci = cell_of_[i];
     const bool fluid = kind[i] == Kind::kFluid;
-    if (!fluid) {
+    const bool contacts = contact && kind[i] == Kind::kRigid;
+    if (!fluid && !contacts) {
       bool any = false;
       for (int k = 0; k < kStencil && !any; ++k) any = cell_fluid_[static_cast<std::size_t>(ci + offs[k])] > 0;
       if (!any) {
         start_[i + 1] = static_cast<std::uint32_t>(nbr_.size());
+        contact_start_[i + 1] = static_cast<std::uint32_t>(contact_nbr_.size());
         continue;
       }
     }
@@ -89,24 +97,41 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
       for (std::uint32_t q = cell_start_[c]; q < cell_start_[c + 1]; ++q) {
         const std::uint32_t j = cell_items_[q];
         if (j == i) continue;
-        if (!fluid && kind[j] != Kind::kFluid) continue;
-        if ((xi - x[j]).squaredNorm() < rc2) nbr_.push_back(j);
+        const double r2 = (xi - x[j]).squaredNorm();
+        if (fluid || kind[j] == Kind::kFluid) {
+          if (r2 < rc2) nbr_.push_back(j);
+        } else if (contacts && r2 < cr2 &&
+                   ((kind[j] == Kind::kRigid && contact->body[j] != contact->body[i]) ||
+                    (kind[j] == Kind::kWall && contact->walls))) {
+          contact_nbr_.push_back(j);
+          min_contact_ = std::min(min_contact_, std::sqrt(r2));
+        }
       }
     }
     start_[i + 1] = static_cast<std::uint32_t>(nbr_.size());
+    contact_start_[i + 1] = static_cast<std::uint32_t>(contact_nbr_.size());
   }
 }
 
 template <int D>
-std::vector<std::uint32_t> NeighborList<D>::owned_in_cell_order(std::size_t owned) const {
-  std::vector<std::uint32_t> order;
-  order.reserve(owned);
-  for (std::uint32_t i : cell_items_)
-    if (i < owned) order.push_back(i);
+std::vector<std::uint32_t> owned_cell_order(const ParticleStore<D>& s, const CellGrid<D>& grid, const CellBox<D>& box) {
+  std::vector<std::pair<std::int64_t, ParticleId>> key(s.owned());
+  for (std::size_t i = 0; i < s.owned(); ++i) {
+    const ICoord<D> c = grid.coord(s.x[i]);
+    std::int64_t lin = 0;
+    for (int a = D - 1; a >= 0; --a)
+      lin = lin * (box.hi[a] - box.lo[a]) + std::clamp(c[a] - box.lo[a], 0, box.hi[a] - box.lo[a] - 1);
+    key[i] = {lin, s.id[i]};
+  }
+  std::vector<std::uint32_t> order(s.owned());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
   return order;
 }
 
 template class NeighborList<2>;
 template class NeighborList<3>;
+template std::vector<std::uint32_t> owned_cell_order<2>(const ParticleStore<2>&, const CellGrid<2>&, const CellBox<2>&);
+template std::vector<std::uint32_t> owned_cell_order<3>(const ParticleStore<3>&, const CellGrid<3>&, const CellBox<3>&);
 
 }  // namespace sph

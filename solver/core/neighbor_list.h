@@ -13,6 +13,14 @@
 
 namespace sph {
 
+// Contact candidates of rigid particles: particles of other bodies (and walls) nearer than
+// `range` (Fuchs 2021 eq. 27 acts below dx; the margin covers the motion within one step).
+struct ContactQuery {
+  const std::int32_t* body = nullptr;  // body index per particle (owned and ghosts)
+  double range = 0;
+  bool walls = true;
+};
+
 template <int D>
 class NeighborList {
  public:
@@ -20,13 +28,21 @@ class NeighborList {
   // plus the ghost layer) and builds the neighbour lists of the owned particles. Fluid
   // particles get all neighbours within rc; wall and rigid particles only their fluid
   // neighbours (all the wall condition needs).
-  void build(const ParticleStore<D>& s, const CellGrid<D>& grid, const CellBox<D>& box, double rc);
+  void build(const ParticleStore<D>& s, const CellGrid<D>& grid, const CellBox<D>& box, double rc,
+             const ContactQuery* contact = nullptr);
 
   const std::uint32_t* begin(std::size_t i) const { return nbr_.data() + start_[i]; }
   const std::uint32_t* end(std::size_t i) const { return nbr_.data() + start_[i + 1]; }
   std::size_t pairs() const { return nbr_.size(); }
+  // Contact candidates of owned rigid particle i (empty without a ContactQuery).
+  const std::uint32_t* contacts_begin(std::size_t i) const { return contact_nbr_.data() + contact_start_[i]; }
+  const std::uint32_t* contacts_end(std::size_t i) const { return contact_nbr_.data() + contact_start_[i + 1]; }
+  std::size_t contact_pairs() const { return contact_nbr_.size(); }
+  // Smallest distance between contact candidates on this rank (infinity if none).
+  double min_contact_distance() const { return min_contact_; }
   std::size_t bytes() const {
-    return nbr_.capacity() * sizeof(std::uint32_t) + start_.capacity() * sizeof(std::uint32_t) +
+    return (nbr_.capacity() + start_.capacity() + contact_nbr_.capacity() + contact_start_.capacity()) *
+               sizeof(std::uint32_t) +
            (cell_start_.capacity() + cell_items_.capacity() + cell_of_.capacity()) * sizeof(std::uint32_t);
   }
 
@@ -48,15 +64,19 @@ class NeighborList {
         }
   }
 
-  // Owned particles ordered by (cell, id): reordering memory this way keeps neighbours close
-  // in memory. Valid after build().
-  std::vector<std::uint32_t> owned_in_cell_order(std::size_t owned) const;
 
  private:
   CellBox<D> box_;
   ICoord<D> dims_{};
   std::vector<std::uint32_t> cell_start_, cell_items_, cell_of_, cell_fluid_;
   std::vector<std::uint32_t> start_, nbr_;
+  std::vector<std::uint32_t> contact_start_, contact_nbr_;
+  double min_contact_ = 0;
 };
+
+// The owned particles (all inside `box`) ordered by (cell, id): the memory order that keeps
+// neighbours close.
+template <int D>
+std::vector<std::uint32_t> owned_cell_order(const ParticleStore<D>& s, const CellGrid<D>& grid, const CellBox<D>& box);
 
 }  // namespace sph

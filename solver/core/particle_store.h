@@ -66,7 +66,12 @@ class Column final : public ColumnBase {
   T& operator[](std::size_t i) { return v_[i]; }
   const T& operator[](std::size_t i) const { return v_[i]; }
   std::size_t size() const { return v_.size(); }
-  void resize(std::size_t n) override { v_.resize(n); }
+  // New elements are zero (Eigen vectors are not zeroed by their default constructor).
+  void resize(std::size_t n) override {
+    const std::size_t old = v_.size();
+    v_.resize(n);
+    if (n > old) std::memset(static_cast<void*>(v_.data() + old), 0, (n - old) * sizeof(T));
+  }
   std::size_t capacity_bytes() const override { return v_.capacity() * sizeof(T); }
   std::byte* bytes() override { return reinterpret_cast<std::byte*>(v_.data()); }
   const std::byte* bytes() const override { return reinterpret_cast<const std::byte*>(v_.data()); }

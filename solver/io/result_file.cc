@@ -150,6 +150,7 @@ void ResultFile::write_snapshot(const ParticleStore<D>& s, double t, std::int64_
     h5::write_rows(g, "id", H5T_NATIVE_INT64, total, offset, local, 1, s.id.data());
     h5::write_rows(g, "kind", H5T_NATIVE_UINT8, total, offset, local, 1, s.kind.data());
     h5::write_rows(g, "material", H5T_NATIVE_UINT16, total, offset, local, 1, s.material.data());
+    for (const auto* c : int_fields_) h5::write_rows(g, c->name(), H5T_NATIVE_INT32, total, offset, local, 1, c->data());
     g.reset();
     flush_into(f);
   }
@@ -158,7 +159,9 @@ void ResultFile::write_snapshot(const ParticleStore<D>& s, double t, std::int64_
 }
 
 void ResultFile::write_xdmf_on_root() const {
-  write_xdmf(xmf_, std::filesystem::path(h5_).filename().string(), snapshots_, fields_);
+  std::vector<XdmfField> fields = fields_;
+  for (const auto* c : int_fields_) fields.push_back({c->name(), 1, "Int", 4});
+  write_xdmf(xmf_, std::filesystem::path(h5_).filename().string(), snapshots_, fields);
 }
 
 template void ResultFile::write_snapshot<2>(const ParticleStore<2>&, double, std::int64_t);

@@ -36,6 +36,9 @@ class ResultFile {
   // starts a new file, when `previous` is missing or unreadable.
   bool carry_over(const std::string& previous, double t, const std::map<std::string, std::string>& meta);
 
+  // An extra per-particle field written with every snapshot (e.g. the body index).
+  void add_field(const Column<std::int32_t>& c) { int_fields_.push_back(&c); }
+
   template <int D>
   void write_snapshot(const ParticleStore<D>& s, double t, std::int64_t step);
   // Writes pending series samples.
@@ -57,6 +60,7 @@ class ResultFile {
   std::vector<SnapshotEntry> snapshots_;
   std::map<std::string, Series> series_;
   std::vector<XdmfField> fields_;
+  std::vector<const Column<std::int32_t>*> int_fields_;
 };
 
 }  // namespace sph

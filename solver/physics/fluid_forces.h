@@ -15,6 +15,7 @@
 // The terms a case uses are selected at compile time, so the pair loop carries no unused
 // work: one instantiation per combination of physical viscosity, artificial viscosity and
 // transport velocity.
+#include <cmath>
 #include <vector>
 
 #include "solver/core/neighbor_list.h"
@@ -34,6 +35,33 @@ struct FluidForceInputs {
   const Column<std::uint8_t>* free_slip = nullptr;    // per wall particle, or nullptr
   Column<Vec<D>>* transport = nullptr;       // u~ (TVF)
   Column<Vec<D>>* background = nullptr;      // a~ (TVF)
+  Column<Vec<D>>* rigid_force = nullptr;     // fluid force on each rigid particle (output)
+};
+
+// What fluid particle i receives from dummy (wall or rigid) particle j, times m_i: pressure
+// with the dummy's density from i's EOS (Adami 2012 eq. 28), viscosity with the no-slip
+// velocity (eq. 23) unless the wall is free-slip, and the artificial stress of the transport-
+// velocity formulation with A_j = 0. One function serves the fluid's force and the reaction
+// on a rigid particle (Fuchs 2021 eq. 19, f_ri = -m_i a_ir), so the two are equal and opposite.
+template <int D, bool kViscous, bool kTransport>
+struct DummyPair {
+  const FluidConstants& fi;
+  double rhoi, pi, Vi2;
+  Vec<D> vi, dui;
+  // s2 returns V_i^2 + V_j^2 (the transport-velocity background term needs it too).
+  Vec<D> operator()(const Vec<D>& gradW, double dwdr, double r, double pj, double rhoj_stored, bool same_fluid,
+                    const Vec<D>& noslip_j, bool free_slip_j, double wall_volume, double& s2) const {
+    const double rhoj = same_fluid ? rhoj_stored : fi.density(pj);
+    const double Vj = wall_volume * fi.rho0 / rhoj;
+    s2 = Vi2 + Vj * Vj;
+    const double pt = (rhoj * pi + rhoi * pj) / (rhoi + rhoj);
+    Vec<D> acc = -(s2 * pt) * gradW;
+    if constexpr (kViscous) {
+      if (!free_slip_j) acc += (s2 * fi.eta * dwdr / r) * (vi - noslip_j);
+    }
+    if constexpr (kTransport) acc += (0.5 * s2 * rhoi * dui.dot(gradW)) * vi;
+    return acc;
+  }
 };
 
 template <int D, class K, bool kViscous, bool kArtVisc, bool kTransport>
@@ -59,6 +87,7 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
     Vec<D> acc_bg = Vec<D>::Zero();
     Vec<D> dui = Vec<D>::Zero();
     if constexpr (kTransport) dui = (*in.transport)[i] - vi;
+    const DummyPair<D, kViscous, kTransport> dummy{fi, rhoi, pi, Vi2, vi, dui};
     for (const std::uint32_t* jp = nl.begin(i); jp != nl.end(i); ++jp) {
       const std::uint32_t j = *jp;
       const Vec<D> rij = xi - x[j];
@@ -91,24 +120,44 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
           acc_av += (m[j] * in.alpha * in.h * cbar * vr / (rhobar * (r * r + eps_h2))) * gradW;
         }
       } else {
-        // Dummy particle: density from its pressure through this fluid's EOS (eq. 28).
-        const double rhoj = (*in.wall_fluid)[j] == mat[i] ? rho[j] : fi.density(p[j]);
-        const double Vj = in.wall_volume * fi.rho0 / rhoj;
-        const double s2 = Vi2 + Vj * Vj;
-        const double pt = (rhoj * pi + rhoi * p[j]) / (rhoi + rhoj);
-        acc -= (s2 * pt) * gradW;
-        if constexpr (kViscous) {
-          if (!(in.free_slip && (*in.free_slip)[j]))
-            acc += (s2 * fi.eta * dwdr / r) * (vi - (*in.noslip)[j]);
-        }
-        if constexpr (kTransport) {
-          acc_bg -= s2 * gradW;
-          acc += (0.5 * s2 * rhoi * dui.dot(gradW)) * vi;
-        }
+        double s2 = 0;
+        acc += dummy(gradW, dwdr, r, p[j], rho[j], (*in.wall_fluid)[j] == mat[i], (*in.noslip)[j],
+                     in.free_slip && (*in.free_slip)[j], in.wall_volume, s2);
+        if constexpr (kTransport) acc_bg -= s2 * gradW;
       }
     }
     s.a[i] = acc / mi + acc_av + in.body;
     if constexpr (kTransport) (*in.background)[i] = (fi.pb / mi) * acc_bg;
+  }
+}
+
+// The force on each owned rigid particle from its fluid neighbours (Fuchs 2021 eq. 19):
+// f_r = -sum_i m_i a_ir with a_ir exactly the term fluid particle i receives from r.
+template <int D, class K, bool kViscous, bool kArtVisc, bool kTransport>
+void compute_rigid_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, const K& k,
+                            const FluidForceInputs<D>& in) {
+  const auto& fl = *in.fluids;
+  Column<Vec<D>>& force = *in.rigid_force;
+  for (std::size_t r = 0; r < s.owned(); ++r) {
+    if (s.kind[r] != Kind::kRigid) continue;
+    Vec<D> f = Vec<D>::Zero();
+    for (const std::uint32_t* ip = nl.begin(r); ip != nl.end(r); ++ip) {
+      const std::uint32_t i = *ip;  // a fluid particle
+      const Vec<D> rij = s.x[i] - s.x[r];
+      const double dist = rij.norm();
+      if (dist == 0.0) continue;
+      const double dwdr = k.dW(dist);
+      const Vec<D> gradW = (dwdr / dist) * rij;
+      const FluidConstants& fi = fl[s.material[i]];
+      const double Vi = s.m[i] / s.rho[i];
+      Vec<D> dui = Vec<D>::Zero();
+      if constexpr (kTransport) dui = (*in.transport)[i] - s.v[i];
+      const DummyPair<D, kViscous, kTransport> dummy{fi, s.rho[i], s.p[i], Vi * Vi, s.v[i], dui};
+      double s2 = 0;
+      f -= dummy(gradW, dwdr, dist, s.p[r], s.rho[r], (*in.wall_fluid)[r] == s.material[i], (*in.noslip)[r],
+                 false, in.wall_volume, s2);
+    }
+    force[r] = f;
   }
 }
 
@@ -119,10 +168,16 @@ class FluidForces {
   static constexpr const char* kName = "fluid_forces";
   FluidForces(bool viscous, bool art_visc, bool transport) {
     fn_ = pick<false, false, false>(viscous, art_visc, transport);
+    coupling_ = pick_coupling(viscous, transport);
   }
   void run(ParticleStore<D>& s, const NeighborList<D>& nl, const K& k,
            const FluidForceInputs<D>& in) const {
     fn_(s, nl, k, in);
+  }
+  // The reaction forces on rigid particles (in.rigid_force).
+  void run_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, const K& k,
+                    const FluidForceInputs<D>& in) const {
+    coupling_(s, nl, k, in);
   }
 
  private:
@@ -142,7 +197,11 @@ class FluidForces {
     if (t) return &compute_fluid_forces<D, K, V, A, true>;
     return &compute_fluid_forces<D, K, V, A, false>;
   }
-  Fn fn_;
+  static Fn pick_coupling(bool v, bool t) {
+    if (v) return t ? &compute_rigid_coupling<D, K, true, false, true> : &compute_rigid_coupling<D, K, true, false, false>;
+    return t ? &compute_rigid_coupling<D, K, false, false, true> : &compute_rigid_coupling<D, K, false, false, false>;
+  }
+  Fn fn_, coupling_;
 };
 
 }  // namespace sph

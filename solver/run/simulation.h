@@ -18,6 +18,8 @@
 
 #include "case/materials.h"
 #include "case/motion.h"
+#include "solver/bodies/rigid_bodies.h"
+#include "solver/bodies/spring_dashpot_contact.h"
 #include "solver/core/neighbor_list.h"
 #include "solver/core/particle_store.h"
 #include "solver/diagnostics/conservation.h"
@@ -94,9 +96,11 @@ class Simulation {
   void compute_density_and_pressure(double dt);
   void apply_wall_condition();
   void compute_forces();
+  void move_bodies(double dt);
+  void sample_bodies();
   void integrate_step(double dt);
   struct EndOfStep {
-    double max_speed = 0, max_density_dev = 0;
+    double max_speed = 0, max_density_dev = 0, min_contact_distance = 0;
     bool violated = false, cancel = false, interrupt = false, checkpoint = false, out_of_time = false;
     std::string diagnosis;
   };
@@ -134,6 +138,10 @@ class Simulation {
   std::optional<Probes<D, K>> probes_;
   std::optional<FluidForces<D, K>> forces_;
   std::optional<BodyForce<D>> body_;
+  std::optional<RigidBodies<D>> bodies_;
+  std::optional<SpringDashpotContact<D>> contact_;
+  bool contact_possible_ = false;  // a contact candidate nearer than dx (+ margin): substep
+  double min_rigid_mass_ = 0;
   Column<Vec<D>>* transport_ = nullptr;   // u~ (transport-velocity formulation)
   Column<Vec<D>>* background_ = nullptr;  // a~
   Column<std::uint8_t>* free_slip_ = nullptr;

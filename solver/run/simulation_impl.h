@@ -98,6 +98,30 @@ void Simulation<D, K>::build_units() {
       units_.push_back(WallMotion<D>::kName);
     }
   }
+  if (c_.bodies_size() > 0) {
+    std::vector<double> rho_s, rho_f;
+    for (const auto& b : c_.bodies()) {
+      rho_s.push_back(mats_[static_cast<size_t>(material_index(mats_, b.material()))].rho0);
+      const int f = b.buoyancy_fluid().empty() ? -1 : material_index(mats_, b.buoyancy_fluid());
+      rho_f.push_back(f < 0 ? 0.0 : mats_[static_cast<size_t>(f)].rho0);
+      const double m = rho_s.back() * wall_volume_;
+      min_rigid_mass_ = min_rigid_mass_ == 0 ? m : std::min(min_rigid_mass_, m);
+    }
+    bodies_.emplace(s_, c_, rho_s, rho_f);
+    if (c_.has_gravity())
+      bodies_->set_gravity(detail::to_vec<D>(c_.gravity().acceleration()), c_.gravity().damping_time());
+    units_.push_back(RigidBodies<D>::kName);
+    units_.push_back("rigid_coupling");
+    if (!walls_) {  // rigid particles use the wall condition too
+      walls_.emplace(s_, kernel_, fluids_);
+      units_.push_back(WallBoundary<D, K>::kName);
+    }
+    if (c_.has_contact()) {
+      const auto& k = c_.contact();
+      contact_.emplace(s_, *bodies_, k.stiffness(), k.damping(), dx_, !k.has_with_walls() || k.with_walls());
+      units_.push_back(SpringDashpotContact<D>::kName);
+    }
+  }
   bool viscous = false;
   double c_max = 0, nu_max = 0;
   for (const auto& f : fluids_) {
@@ -148,6 +172,24 @@ void Simulation<D, K>::build_units() {
   // Bounding box of the fluid (e.g. the surge front of a dam break).
   result_.add_series("diagnostics/fluid_min", {static_cast<std::uint64_t>(D)});
   result_.add_series("diagnostics/fluid_max", {static_cast<std::uint64_t>(D)});
+  if (bodies_) {
+    const auto nb = static_cast<std::uint64_t>(c_.bodies_size());
+    const std::uint64_t dd = D, aa = RigidBodies<D>::A;
+    result_.add_series("bodies/time");
+    result_.add_series("bodies/position", {nb, dd});
+    result_.add_series("bodies/velocity", {nb, dd});
+    result_.add_series("bodies/angular_velocity", {nb, aa});
+    result_.add_series("bodies/orientation", {nb, D == 2 ? 1u : 4u});
+    result_.add_series("bodies/fluid_force", {nb, dd});
+    result_.add_series("bodies/fluid_torque", {nb, aa});
+    result_.add_series("bodies/contact_force", {nb, dd});
+    result_.add_series("bodies/contact_torque", {nb, aa});
+    result_.add_series("bodies/contacts", {nb});
+    result_.add_series("bodies/kinetic_energy", {nb});
+    result_.add_series("bodies/mass", {nb});
+    result_.add_series("bodies/inertia", {nb, aa * aa});  // body frame, about the centre of mass
+    result_.add_field(bodies_->body_index());
+  }
   if (probes_)
     for (const auto& set : probes_->sets()) {
       const auto n = static_cast<std::uint64_t>(set.points.size());
@@ -209,6 +251,7 @@ void Simulation<D, K>::build_scene() {
     }
     if (free_slip_)
       (*free_slip_)[i] = p.kind == Kind::kWall && c_.walls(p.wall).free_slip() ? 1 : 0;
+    if (bodies_) bodies_->body_index()[i] = p.body;
   }
   for (std::size_t i = 0; i < kept.size(); ++i)
     if (s_.kind[i] == Kind::kFluid) s_.p[i] = fluids_[s_.material[i]].pressure(s_.rho[i]);
@@ -219,10 +262,17 @@ void Simulation<D, K>::exchange_and_search() {
   {
     Timer tm(timer("halo_exchange"));
     halo_.migrate(s_);
+    // Keep owned particles in cell order so neighbours are close in memory.
+    if (step_ % 25 == 0) s_.reorder_owned(owned_cell_order(s_, grid_, halo_.my_box()));
     halo_.build_ghosts(s_);
   }
   Timer tm(timer("neighbor_search"));
-  nl_.build(s_, grid_, halo_.ghost_box(), rc_);
+  if (contact_) {
+    ContactQuery q{bodies_->body_index().data(), contact_->candidate_range(), contact_->with_walls()};
+    nl_.build(s_, grid_, halo_.ghost_box(), rc_, &q);
+  } else {
+    nl_.build(s_, grid_, halo_.ghost_box(), rc_);
+  }
 }
 
 template <int D, class K>
@@ -247,7 +297,8 @@ void Simulation<D, K>::apply_wall_condition() {
   if (!walls_) return;
   {
     Timer tm(timer(WallBoundary<D, K>::kName));
-    walls_->run(nl_, fluid_body_force(t_), wall_motion_ ? &wall_motion_->acceleration() : nullptr);
+    walls_->run(nl_, fluid_body_force(t_),
+                s_.has("wall_acceleration") ? &s_.template get<Vec<D>>("wall_acceleration") : nullptr);
   }
   Timer tm(timer("halo_exchange"));
   halo_.update(s_, {&s_.rho, &s_.p, &walls_->noslip_velocity(), &walls_->fluid_material()});
@@ -270,6 +321,28 @@ void Simulation<D, K>::compute_forces() {
   in.transport = transport_;
   in.background = background_;
   forces_->run(s_, nl_, kernel_, in);
+  if (bodies_) {
+    Timer tc(timer("rigid_coupling"));
+    in.rigid_force = &bodies_->fluid_force();
+    forces_->run_coupling(s_, nl_, kernel_, in);
+    bodies_->reduce_fluid_forces(comm_);
+  }
+}
+
+template <int D, class K>
+void Simulation<D, K>::move_bodies(double dt) {
+  Timer tm(timer(RigidBodies<D>::kName));
+  if (contact_) {
+    Timer tc(timer(SpringDashpotContact<D>::kName));
+    const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
+    // Substep only when bodies may touch during this step; otherwise one drift.
+    const int n = contact_possible_ ? std::max(1, static_cast<int>(std::ceil(dt / (factor * contact_->time_step(min_rigid_mass_)))))
+                                    : 1;
+    contact_->drift(nl_, dt, n, t_ + dt, comm_);
+  } else {
+    bodies_->drift(dt, t_ + dt);
+  }
+  bodies_->place_owned_particles();
 }
 
 template <int D, class K>
@@ -278,10 +351,18 @@ void Simulation<D, K>::prime() {
     Timer tm(timer(WallMotion<D>::kName));
     wall_motion_->run(t_, transport_);
   }
+  if (bodies_) bodies_->place_owned_particles();
   exchange_and_search();
   compute_density_and_pressure(0.0);
   apply_wall_condition();
   compute_forces();
+  if (bodies_) {
+    if (contact_) {
+      contact_->drift(nl_, 0.0, 1, t_, comm_);  // evaluates the initial contact forces
+      contact_possible_ = comm_.min(nl_.min_contact_distance()) < 1.1 * dx_;
+    }
+    bodies_->update_accelerations(t_);
+  }
 }
 
 template <int D, class K>
@@ -291,6 +372,10 @@ void Simulation<D, K>::integrate_step(double dt) {
     kick(s_, 0.5 * dt);
     if (transport_) set_transport_velocity(s_, *transport_, *background_, 0.5 * dt);
     drift(s_, transport_ ? *transport_ : s_.v, dt);
+  }
+  if (bodies_) {
+    bodies_->kick(0.5 * dt, t_);  // Fuchs 2021 eq. 31
+    move_bodies(dt);              // eqs. 33-36, contact substeps
   }
   t_ += dt;
   ++step_;
@@ -304,6 +389,11 @@ void Simulation<D, K>::integrate_step(double dt) {
   compute_forces();
   Timer tm(timer("integrate"));
   kick(s_, 0.5 * dt);
+  if (bodies_) {
+    bodies_->kick(0.5 * dt, t_);  // eq. 39
+    bodies_->update_accelerations(t_);
+    bodies_->update_owned_velocities();  // eq. 40
+  }
 }
 
 template <int D, class K>
@@ -328,7 +418,8 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
                            comm_.root() && c_.stop().max_wall_seconds() > 0 &&
                                    MPI_Wtime() - wall_start_ >= c_.stop().max_wall_seconds()
                                ? 1.0
-                               : 0.0};
+                               : 0.0,
+                           -nl_.min_contact_distance()};
   const double t0 = MPI_Wtime();
   comm_.max_inplace(r);
   comm_seconds_ += MPI_Wtime() - t0;
@@ -340,6 +431,7 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
   e.interrupt = r[4] > 0;
   e.checkpoint = r[5] > 0;
   e.out_of_time = r[6] > 0;
+  e.min_contact_distance = -r[7];
   if (e.violated) e.diagnosis = comm_.first_non_empty(scan.violation);
   return e;
 }
@@ -382,6 +474,7 @@ void Simulation<D, K>::sample_series() {
   put("imbalance", imbalance_);
   put("fluid_particles", cs.fluid_particles);
   result_.append_series("diagnostics/momentum", std::vector<double>(cs.momentum.data(), cs.momentum.data() + D));
+  if (bodies_) sample_bodies();
   if (probes_) {
     Timer tp(timer(Probes<D, K>::kName));
     const auto values = probes_->sample(s_, nl_, grid_, halo_.my_box(), comm_);
@@ -405,6 +498,44 @@ void Simulation<D, K>::sample_series() {
 }
 
 template <int D, class K>
+void Simulation<D, K>::sample_bodies() {
+  std::vector<double> pos, vel, w, q, ff, ft, cf, ct, n, ke, mass, inertia;
+  for (const RigidBody<D>& b : bodies_->bodies()) {
+    for (int a = 0; a < D; ++a) {
+      pos.push_back(b.com[a]);
+      vel.push_back(b.velocity[a]);
+      ff.push_back(b.fluid_force[a]);
+      cf.push_back(b.contact_force[a]);
+    }
+    for (int a = 0; a < RigidBodies<D>::A; ++a) {
+      w.push_back(b.omega[a]);
+      ft.push_back(b.fluid_torque[a]);
+      ct.push_back(b.contact_torque[a]);
+    }
+    if constexpr (D == 2) q.push_back(b.orientation.angle);
+    else for (int a = 0; a < 4; ++a) q.push_back(b.orientation.q.coeffs()[a]);  // x, y, z, w
+    n.push_back(static_cast<double>(b.contacts));
+    ke.push_back(b.kinetic_energy());
+    mass.push_back(b.mass);
+    for (int p = 0; p < RigidBodies<D>::A; ++p)
+      for (int r = 0; r < RigidBodies<D>::A; ++r) inertia.push_back(b.inertia_body(p, r));
+  }
+  result_.append_series("bodies/time", {t_});
+  result_.append_series("bodies/position", pos);
+  result_.append_series("bodies/velocity", vel);
+  result_.append_series("bodies/angular_velocity", w);
+  result_.append_series("bodies/orientation", q);
+  result_.append_series("bodies/fluid_force", ff);
+  result_.append_series("bodies/fluid_torque", ft);
+  result_.append_series("bodies/contact_force", cf);
+  result_.append_series("bodies/contact_torque", ct);
+  result_.append_series("bodies/contacts", n);
+  result_.append_series("bodies/kinetic_energy", ke);
+  result_.append_series("bodies/mass", mass);
+  result_.append_series("bodies/inertia", inertia);
+}
+
+template <int D, class K>
 void Simulation<D, K>::write_snapshot() {
   Timer tm(timer("output"));
   result_.write_snapshot(s_, t_, step_);
@@ -420,7 +551,8 @@ std::string Simulation<D, K>::write_checkpoint_now() {
   std::map<std::string, double> state = {
       {"time", t_},           {"step", static_cast<double>(step_)},
       {"dt", dt_},            {"dt0", dt0_},
-      {"next_series", next_series_}};
+      {"next_series", next_series_}, {"contact_possible", contact_possible_ ? 1.0 : 0.0}};
+  if (bodies_) bodies_->save(state);
   write_checkpoint(comm_, path, s_, state);
   if (comm_.root()) {
     // Keep the two newest checkpoints.
@@ -482,6 +614,11 @@ std::map<std::string, std::string> Simulation<D, K>::metadata(const std::string&
   std::string units;
   for (const auto& u : units_) units += (units.empty() ? "" : ",") + u;
   m["active_units"] = units;
+  if (bodies_) {
+    std::string names;
+    for (const auto& b : bodies_->bodies()) names += (names.empty() ? "" : ",") + b.name;
+    m["body_names"] = names;
+  }
   m["status"] = status;
   return m;
 }
@@ -517,6 +654,19 @@ void Simulation<D, K>::start() {
     build_scene();
     halo_.migrate(s_);
     global_particles_ = comm_.sum(static_cast<std::int64_t>(s_.owned()));
+    if (bodies_) {
+      std::vector<Vec<D>> v0;
+      std::vector<AngVec<D>> w0;
+      for (const auto& b : c_.bodies()) {
+        v0.push_back(detail::to_vec<D>(b.initial_velocity()));
+        AngVec<D> w;
+        if constexpr (D == 2) w[0] = b.initial_angular_velocity().z();
+        else w = Eigen::Vector3d(b.initial_angular_velocity().x(), b.initial_angular_velocity().y(),
+                                 b.initial_angular_velocity().z());
+        w0.push_back(w);
+      }
+      bodies_->initialize(comm_, dx_, v0, w0);
+    }
     prime();
     {
       // Initial transport velocity and series before the first step.
@@ -537,6 +687,8 @@ void Simulation<D, K>::start() {
     dt_ = state.at("dt");
     dt0_ = state.at("dt0");
     next_series_ = state.at("next_series");
+    contact_possible_ = state.count("contact_possible") && state.at("contact_possible") > 0;
+    if (bodies_) bodies_->load(state);
     decompose_by_histogram();
     halo_.migrate(s_);
     global_particles_ = comm_.sum(static_cast<std::int64_t>(s_.owned()));
@@ -566,6 +718,7 @@ typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
       return rep;
     }
   }
+  if (contact_) contact_possible_ = e.min_contact_distance < 1.1 * dx_;
   if (step_ % 20 == 0) maybe_rebalance();
   return rep;
 }
@@ -625,7 +778,6 @@ RunOutcome Simulation<D, K>::run() {
         break;
       }
     }
-    if (step_ % 25 == 0) s_.reorder_owned(nl_.owned_in_cell_order(s_.owned()));
   }
   report_progress(true);
   const char* st = status == RunStatus::kCompleted   ? "completed"

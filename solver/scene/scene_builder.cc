@@ -13,6 +13,7 @@ SceneBuilder::SceneBuilder(const v1::Case& c, const std::vector<MaterialParams>&
   const int d = c.dimension();
   const double shell = std::ceil(kernel_support_factor(c) - 1e-9) * c.dx();
   for (const auto& w : c.walls()) walls_.push_back(compile_shape(w.shape(), d, shell));
+  for (const auto& b : c.bodies()) bodies_.push_back(compile_shape(b.shape(), d, shell));
   for (const auto& f : c.fluids()) fluids_.push_back(compile_shape(f.shape(), d, shell));
   for (const auto& m : materials)
     if (m.fluid) {
@@ -46,6 +47,25 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
     });
   }
 
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const auto& body = c_.bodies(static_cast<int>(b));
+    SceneParticle p;
+    p.kind = Kind::kRigid;
+    p.body = static_cast<std::int32_t>(b);
+    const int mi = material_index(mats_, body.material());
+    p.material = static_cast<std::uint16_t>(mi);
+    p.rho = wall_rho_;  // a dummy density for the fluid (the wall condition overwrites it)
+    p.mass = mats_[static_cast<std::size_t>(mi)].rho0 * vol;
+    for_each_lattice_point(*bodies_[b], spec, clip, [&](const Point3& x) {
+      for (const auto& w : walls_)
+        if (w->contains(x)) return;
+      for (std::size_t k = 0; k < b; ++k)
+        if (bodies_[k]->contains(x)) return;
+      p.x = x;
+      fn(p);
+    });
+  }
+
   // SplitMix64: a well-mixed, reproducible pseudo-random value per particle.
   auto unit_random = [](std::uint64_t k) {
     k += 0x9E3779B97F4A7C15ull;
@@ -67,6 +87,8 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
     for_each_lattice_point(*fluids_[f], spec, clip, [&](const Point3& x) {
       for (const auto& w : walls_)
         if (w->contains(x)) return;
+      for (const auto& b : bodies_)
+        if (b->contains(x)) return;
       for (std::size_t k = 0; k < f; ++k)
         if (fluids_[k]->contains(x)) return;
       p.x = x;

@@ -1,8 +1,8 @@
 #pragma once
-// Builds the particles of a case: walls, then fluids, each on the lattice of spacing dx inside
-// its shape (or at explicit points), clipped to the domain. A lattice point already claimed
-// by a wall is not used by a fluid, and one claimed by an earlier fluid region not by a later
-// one. The order of generation is fixed, so global ids are the same on every rank and in
+// Builds the particles of a case: walls, then rigid bodies, then fluids, each on the lattice
+// of spacing dx inside its shape (or at explicit points), clipped to the domain. A lattice
+// point claimed by a wall is not used by a body or a fluid, one claimed by a body not by a
+// fluid, and one claimed by an earlier region of the same kind not by a later one. The order of generation is fixed, so global ids are the same on every rank and in
 // every run.
 #include <functional>
 #include <memory>
@@ -19,6 +19,7 @@ struct SceneParticle {
   Kind kind = Kind::kFluid;
   std::uint16_t material = kNoMaterial;
   std::uint16_t wall = 0;  // index of the wall (walls only)
+  std::int32_t body = -1;  // index of the rigid body (rigid particles only)
   Point3 x = Point3::Zero();
   Point3 v = Point3::Zero();
   double rho = 1, mass = 1;
@@ -35,7 +36,7 @@ class SceneBuilder {
  private:
   const v1::Case& c_;
   const std::vector<MaterialParams>& mats_;
-  std::vector<std::unique_ptr<Shape>> walls_, fluids_;
+  std::vector<std::unique_ptr<Shape>> walls_, bodies_, fluids_;
   double wall_rho_ = 1;
 };
 

@@ -96,14 +96,30 @@ TEST(CaseValidation, DimensionSpecificShapes) {
 }
 
 TEST(CaseValidation, NotImplementedUnitsAreRejectedNotIgnored) {
-  auto errs = errors_of(R"(bodies { name: "disk" })");
-  EXPECT_TRUE(has_error(errs, "bodies[0]", "not implemented yet")) << dump(errs);
-  errs = errors_of(R"(thermal { initial_temperature: 300 })");
+  auto errs = errors_of(R"(thermal { initial_temperature: 300 })");
   EXPECT_TRUE(has_error(errs, "thermal", "not implemented yet")) << dump(errs);
-  errs = errors_of(R"(contact { stiffness: 1 })");
-  EXPECT_TRUE(has_error(errs, "contact", "not implemented yet")) << dump(errs);
+  errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
+bodies { name: "b" material: "s" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } }
+contact { stiffness: 1 friction { coefficient: 0.3 } })");
+  EXPECT_TRUE(has_error(errs, "contact.friction", "not implemented yet")) << dump(errs);
   errs = errors_of(R"(open_boundaries { name: "in" })");
   EXPECT_TRUE(has_error(errs, "open_boundaries[0]", "not implemented yet")) << dump(errs);
+}
+
+TEST(CaseValidation, RigidBodiesAndContact) {
+  auto errs = errors_of(R"(bodies { name: "disk" })");
+  EXPECT_TRUE(has_error(errs, "bodies[0].shape", "is required")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "bodies[0].material", "is required")) << dump(errs);
+  errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
+bodies { name: "b" material: "water" body_force: BUOYANCY_REDUCED shape { ball { center { x: 1 y: 1 } radius: 0.2 } } }
+bodies { name: "b" material: "s" motion_type: PRESCRIBED shape { ball { center { x: 1 y: 1 } radius: 0.2 } } })");
+  EXPECT_TRUE(has_error(errs, "bodies[0].material", "is FLUID, expected SOLID")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "bodies[0].buoyancy_fluid", "is required")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "bodies[1].name", "duplicate body name 'b'")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "bodies[1].motion", "a PRESCRIBED body needs a motion")) << dump(errs);
+  errs = errors_of(R"(contact { stiffness: -1 })");
+  EXPECT_TRUE(has_error(errs, "contact.stiffness", "must be > 0")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "contact", "no rigid bodies")) << dump(errs);
 }
 
 TEST(CaseValidation, TransportPressureWithoutTransportVelocity) {
@@ -139,7 +155,7 @@ TEST(CaseValidation, EveryShippedCaseIsValid) {
   for (const char* name : {"poiseuille_2d", "couette_2d", "hydrostatic_tank_2d", "hydrostatic_wedge_2d",
                            "hydrostatic_cylinder_3d", "free_fall_tank_2d", "dambreak_2d", "dambreak_martin_moyce_2d",
                            "colagrossi_dambreak_2d", "rotating_rippled_cylinder_2d", "cylinder_lattice_2d",
-                           "taylor_green_2d"}) {
+                           "taylor_green_2d", "falling_disk_2d"}) {
     const auto c = load_case_file(std::string(SPHD_SOURCE_DIR) + "/cases/" + name + ".textproto");
     const auto errs = validate_case(c);
     EXPECT_TRUE(errs.empty()) << name << ": " << dump(errs);
