@@ -94,7 +94,8 @@ CaseEstimate estimate_case(const v1::Case& c) {
   }
   e.initial_dt = std::isfinite(dt) ? dt : 0.0;
   if (e.initial_dt > 0) e.steps = std::ceil(c.time().end_time() / e.initial_dt);
-  if (c.time().max_steps() > 0) e.steps = std::min(e.steps, static_cast<double>(c.time().max_steps()));
+  if (c.time().max_steps() > 0)
+    e.steps = std::min(e.steps, static_cast<double>(c.time().max_steps()));
 
   // Storage: particle columns (~40 doubles in 3D) plus a neighbour index per pair, and
   // about 15% ghost copies.

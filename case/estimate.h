@@ -14,10 +14,10 @@ struct CaseEstimate {
   double wall_particles = 0;
   double rigid_particles = 0;
   double total() const { return fluid_particles + wall_particles + rigid_particles; }
-  double initial_dt = 0;       // [s]
-  double steps = 0;            // end_time / initial_dt (adaptive runs may differ)
-  double bytes = 0;            // particle storage + neighbour lists, all ranks
-  std::string dt_limited_by;   // which criterion of eq. (41) is the smallest
+  double initial_dt = 0;      // [s]
+  double steps = 0;           // end_time / initial_dt (adaptive runs may differ)
+  double bytes = 0;           // particle storage + neighbour lists, all ranks
+  std::string dt_limited_by;  // which criterion of eq. (41) is the smallest
 };
 
 // Requires a case that passed the structural checks of validate_case (shapes compile).

@@ -274,9 +274,8 @@ std::unique_ptr<Shape> compile_shape(const v1::Shape& s, int dim, double t) {
                                                std::move(sub));
     }
     case v1::Shape::kShell:
-      return std::make_unique<ShellShape>(
-          compile_shape(s.shell().inner(), dim, t),
-          s.shell().has_thickness() ? s.shell().thickness() : t);
+      return std::make_unique<ShellShape>(compile_shape(s.shell().inner(), dim, t),
+                                          s.shell().has_thickness() ? s.shell().thickness() : t);
     case v1::Shape::KIND_NOT_SET:
       break;
   }

@@ -56,6 +56,8 @@ class Shape {
 // Compiles a validated shape. default_shell_thickness is used for Shell without thickness.
 std::unique_ptr<Shape> compile_shape(const v1::Shape& s, int dim, double default_shell_thickness);
 
-inline Point3 to_point(const v1::Vec3& v) { return {v.x(), v.y(), v.z()}; }
+inline Point3 to_point(const v1::Vec3& v) {
+  return {v.x(), v.y(), v.z()};
+}
 
 }  // namespace sph

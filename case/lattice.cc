@@ -9,7 +9,8 @@ struct IndexRange {
   std::int64_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};  // inclusive
   double points() const {
     double n = 1;
-    for (int a = 0; a < 3; ++a) n *= static_cast<double>(std::max<std::int64_t>(0, hi[a] - lo[a] + 1));
+    for (int a = 0; a < 3; ++a)
+      n *= static_cast<double>(std::max<std::int64_t>(0, hi[a] - lo[a] + 1));
     return n;
   }
 };

@@ -16,8 +16,8 @@ class CollectErrors : public google::protobuf::io::ErrorCollector {
   void AddError(int line, google::protobuf::io::ColumnNumber column,
                 const std::string& message) override {
     if (!text.empty()) text += "; ";
-    text += "line " + std::to_string(line + 1) + ", column " + std::to_string(column + 1) +
-            ": " + message;
+    text += "line " + std::to_string(line + 1) + ", column " + std::to_string(column + 1) + ": " +
+            message;
   }
   std::string text;
 };
@@ -57,8 +57,7 @@ void inline_shape(v1::Shape& s, const std::string& base, const std::string& fiel
       if (!ps->file().empty()) {
         std::filesystem::path p(ps->file());
         if (p.is_relative()) p = std::filesystem::path(base) / p;
-        for (auto& v : read_point_file(p.string(), field + ".points.file"))
-          *ps->add_points() = v;
+        for (auto& v : read_point_file(p.string(), field + ".points.file")) *ps->add_points() = v;
         ps->clear_file();
       }
       break;

@@ -11,15 +11,15 @@ namespace sph {
 struct MaterialParams {
   std::string name;
   bool fluid = true;
-  double rho0 = 1;        // reference density
-  bool tait = false;      // Tait (Adami 2012 eq. 3) or linear (Fuchs 2021 eq. 18)
-  double gamma = 1;       // Tait exponent (1 for linear)
-  double c = 0;           // artificial sound speed
-  double p0 = 0;          // reference pressure, rho0 c^2 / gamma
-  double chi = 0;         // background pressure of the EOS
-  double eta = 0;         // dynamic viscosity
+  double rho0 = 1;    // reference density
+  bool tait = false;  // Tait (Adami 2012 eq. 3) or linear (Fuchs 2021 eq. 18)
+  double gamma = 1;   // Tait exponent (1 for linear)
+  double c = 0;       // artificial sound speed
+  double p0 = 0;      // reference pressure, rho0 c^2 / gamma
+  double chi = 0;     // background pressure of the EOS
+  double eta = 0;     // dynamic viscosity
   double nu() const { return eta / rho0; }
-  double pb = 0;          // transport-velocity background pressure
+  double pb = 0;  // transport-velocity background pressure
 };
 
 std::vector<MaterialParams> resolve_materials(const v1::Case& c);

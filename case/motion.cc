@@ -4,8 +4,7 @@ namespace sph {
 
 MotionPath::MotionPath(const v1::Motion& m, int dim)
     : dim_(dim),
-      v_{TimeFunction(m.velocity_x()), TimeFunction(m.velocity_y()),
-         TimeFunction(m.velocity_z())},
+      v_{TimeFunction(m.velocity_x()), TimeFunction(m.velocity_y()), TimeFunction(m.velocity_z())},
       omega_(m.angular_velocity()),
       center0_(to_point(m.center())) {
   if (dim == 3 && to_point(m.axis()).norm() > 0) axis_ = to_point(m.axis()).normalized();
@@ -22,7 +21,9 @@ Point3 MotionPath::translation_acceleration(double t) const {
   return {v_[0].derivative(t), v_[1].derivative(t), dim_ == 3 ? v_[2].derivative(t) : 0.0};
 }
 
-Point3 MotionPath::center(double t) const { return center0_ + translation(t); }
+Point3 MotionPath::center(double t) const {
+  return center0_ + translation(t);
+}
 
 Point3 MotionPath::position(const Point3& x0, double t) const {
   const double angle = omega_.integral(t);

@@ -30,8 +30,8 @@ TimeFunction::TimeFunction(const v1::TimeFunction& f) : start_(f.start_time()), 
       cumulative_.assign(times_.size(), 0.0);
       for (size_t i = 1; i < times_.size(); ++i) {
         const double w = times_[i] - times_[i - 1];
-        const double seg = kind_ == Kind::kLinear ? 0.5 * (values_[i] + values_[i - 1]) * w
-                                                  : values_[i - 1] * w;
+        const double seg =
+            kind_ == Kind::kLinear ? 0.5 * (values_[i] + values_[i - 1]) * w : values_[i - 1] * w;
         cumulative_[i] = cumulative_[i - 1] + seg;
       }
       break;
@@ -54,8 +54,8 @@ double TimeFunction::raw_value(double t) const {
     case Kind::kStep: {
       if (t <= times_.front()) return values_.front();
       if (t >= times_.back()) return values_.back();
-      const size_t i = static_cast<size_t>(
-          std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());  // times_[i-1] <= t < times_[i]
+      const size_t i = static_cast<size_t>(std::upper_bound(times_.begin(), times_.end(), t) -
+                                           times_.begin());  // times_[i-1] <= t < times_[i]
       if (kind_ == Kind::kStep) return values_[i - 1];
       const double s = (t - times_[i - 1]) / (times_[i] - times_[i - 1]);
       return values_[i - 1] + s * (values_[i] - values_[i - 1]);
@@ -70,8 +70,8 @@ double TimeFunction::raw_derivative(double t) const {
       return amp_ * omega_ * std::cos(omega_ * t + phase_);
     case Kind::kLinear: {
       if (t <= times_.front() || t >= times_.back()) return 0.0;
-      const size_t i = static_cast<size_t>(
-          std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());
+      const size_t i =
+          static_cast<size_t>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());
       return (values_[i] - values_[i - 1]) / (times_[i] - times_[i - 1]);
     }
     default:
@@ -91,22 +91,25 @@ double TimeFunction::raw_antiderivative(double t) const {
     case Kind::kLinear:
     case Kind::kStep: {
       if (t <= times_.front()) return values_.front() * (t - times_.front());
-      if (t >= times_.back())
-        return cumulative_.back() + values_.back() * (t - times_.back());
-      const size_t i = static_cast<size_t>(
-          std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());
+      if (t >= times_.back()) return cumulative_.back() + values_.back() * (t - times_.back());
+      const size_t i =
+          static_cast<size_t>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());
       const double w = t - times_[i - 1];
-      const double v = kind_ == Kind::kLinear ? 0.5 * (values_[i - 1] + raw_value(t)) * w
-                                              : values_[i - 1] * w;
+      const double v =
+          kind_ == Kind::kLinear ? 0.5 * (values_[i - 1] + raw_value(t)) * w : values_[i - 1] * w;
       return cumulative_[i - 1] + v;
     }
   }
   return 0.0;
 }
 
-double TimeFunction::value(double t) const { return active(t) ? raw_value(t) : 0.0; }
+double TimeFunction::value(double t) const {
+  return active(t) ? raw_value(t) : 0.0;
+}
 
-double TimeFunction::derivative(double t) const { return active(t) ? raw_derivative(t) : 0.0; }
+double TimeFunction::derivative(double t) const {
+  return active(t) ? raw_derivative(t) : 0.0;
+}
 
 double TimeFunction::integral(double t) const {
   if (kind_ == Kind::kZero || t <= start_) return 0.0;

@@ -9,11 +9,15 @@
 namespace sph {
 namespace {
 
-std::string idx(const std::string& base, int i) { return base + "[" + std::to_string(i) + "]"; }
+std::string idx(const std::string& base, int i) {
+  return base + "[" + std::to_string(i) + "]";
+}
 std::string cat(const std::string& base, const std::string& f) {
   return base.empty() ? f : base + "." + f;
 }
-bool finite(double v) { return std::isfinite(v); }
+bool finite(double v) {
+  return std::isfinite(v);
+}
 
 class Validator {
  public:
@@ -69,8 +73,12 @@ class Validator {
       vec(c_.domain().hi(), "domain.hi");
       const char* axes = "xyz";
       for (int a = 0; a < c_.dimension(); ++a) {
-        const double lo = a == 0 ? c_.domain().lo().x() : a == 1 ? c_.domain().lo().y() : c_.domain().lo().z();
-        const double hi = a == 0 ? c_.domain().hi().x() : a == 1 ? c_.domain().hi().y() : c_.domain().hi().z();
+        const double lo = a == 0   ? c_.domain().lo().x()
+                          : a == 1 ? c_.domain().lo().y()
+                                   : c_.domain().lo().z();
+        const double hi = a == 0   ? c_.domain().hi().x()
+                          : a == 1 ? c_.domain().hi().y()
+                                   : c_.domain().hi().z();
         if (!(hi > lo))
           error(std::string("domain.hi.") + axes[a],
                 "must be greater than domain.lo." + std::string(1, axes[a]));
@@ -89,7 +97,8 @@ class Validator {
     for (int i = 0; i < c_.materials_size(); ++i) {
       const auto& m = c_.materials(i);
       const std::string f = idx("materials", i);
-      if (m.name().empty()) error(cat(f, "name"), "must not be empty");
+      if (m.name().empty())
+        error(cat(f, "name"), "must not be empty");
       else if (!names_.insert(m.name()).second)
         error(cat(f, "name"), "duplicate material name '" + m.name() + "'");
       phase_[m.name()] = m.phase() == v1::SOLID ? v1::SOLID : v1::FLUID;
@@ -100,16 +109,20 @@ class Validator {
         if (e.has_sound_speed() == e.has_reference_pressure())
           error(ef, "give exactly one of sound_speed and reference_pressure");
         if (e.has_sound_speed()) positive(e.sound_speed(), cat(ef, "sound_speed"));
-        if (e.has_reference_pressure()) positive(e.reference_pressure(), cat(ef, "reference_pressure"));
+        if (e.has_reference_pressure())
+          positive(e.reference_pressure(), cat(ef, "reference_pressure"));
         if (e.has_gamma()) {
           positive(e.gamma(), cat(ef, "gamma"));
           if (e.kind() != v1::TAIT) error(cat(ef, "gamma"), "only used with kind: TAIT");
         }
-        if (!finite(e.background_pressure())) error(cat(ef, "background_pressure"), "must be finite");
+        if (!finite(e.background_pressure()))
+          error(cat(ef, "background_pressure"), "must be finite");
         if (m.has_dynamic_viscosity() && m.has_kinematic_viscosity())
           error(f, "give at most one of dynamic_viscosity and kinematic_viscosity");
-        if (m.has_dynamic_viscosity()) non_negative(m.dynamic_viscosity(), cat(f, "dynamic_viscosity"));
-        if (m.has_kinematic_viscosity()) non_negative(m.kinematic_viscosity(), cat(f, "kinematic_viscosity"));
+        if (m.has_dynamic_viscosity())
+          non_negative(m.dynamic_viscosity(), cat(f, "dynamic_viscosity"));
+        if (m.has_kinematic_viscosity())
+          non_negative(m.kinematic_viscosity(), cat(f, "kinematic_viscosity"));
         if (m.has_transport_background_pressure()) {
           non_negative(m.transport_background_pressure(), cat(f, "transport_background_pressure"));
           if (!c_.fluid_model().transport_velocity())
@@ -122,7 +135,8 @@ class Validator {
       for (auto [has, name] : {std::pair{m.has_heat_capacity(), "heat_capacity"},
                                std::pair{m.has_thermal_conductivity(), "thermal_conductivity"},
                                std::pair{m.has_diffusivity(), "diffusivity"}}) {
-        if (has) error(cat(f, name), "not implemented yet: heat conduction and concentration diffusion");
+        if (has)
+          error(cat(f, name), "not implemented yet: heat conduction and concentration diffusion");
       }
       if (m.fixed_concentration())
         error(cat(f, "fixed_concentration"), "not implemented yet: concentration diffusion");
@@ -139,7 +153,8 @@ class Validator {
     if (it == phase_.end()) {
       std::string known;
       for (const auto& n : names_) known += (known.empty() ? "" : ", ") + n;
-      error(field, "unknown material '" + name + "' (defined: " + (known.empty() ? "none" : known) + ")");
+      error(field,
+            "unknown material '" + name + "' (defined: " + (known.empty() ? "none" : known) + ")");
     } else if (it->second != want) {
       error(field, "material '" + name + "' is " + (it->second == v1::SOLID ? "SOLID" : "FLUID") +
                        ", expected " + (want == v1::SOLID ? "SOLID" : "FLUID"));
@@ -150,8 +165,9 @@ class Validator {
     const int d = c_.dimension();
     switch (s.kind_case()) {
       case v1::Shape::KIND_NOT_SET:
-        error(f, "shape has no kind (box, ball, cylinder, polygon, polar_curve, points, union, "
-                 "intersection, difference or shell)");
+        error(f,
+              "shape has no kind (box, ball, cylinder, polygon, polar_curve, points, union, "
+              "intersection, difference or shell)");
         break;
       case v1::Shape::kBox: {
         vec(s.box().lo(), cat(f, "box.lo"));
@@ -173,7 +189,8 @@ class Validator {
         vec(s.cylinder().axis(), cat(f, "cylinder.axis"));
         positive(s.cylinder().radius(), cat(f, "cylinder.radius"));
         positive(s.cylinder().length(), cat(f, "cylinder.length"));
-        if (s.cylinder().axis().x() == 0 && s.cylinder().axis().y() == 0 && s.cylinder().axis().z() == 0)
+        if (s.cylinder().axis().x() == 0 && s.cylinder().axis().y() == 0 &&
+            s.cylinder().axis().z() == 0)
           error(cat(f, "cylinder.axis"), "must not be zero");
         break;
       case v1::Shape::kPolygon:
@@ -213,14 +230,18 @@ class Validator {
         break;
       }
       case v1::Shape::kDifference:
-        if (!s.difference().has_base()) error(cat(f, "difference.base"), "is required");
-        else shape(s.difference().base(), cat(f, "difference.base"), false);
+        if (!s.difference().has_base())
+          error(cat(f, "difference.base"), "is required");
+        else
+          shape(s.difference().base(), cat(f, "difference.base"), false);
         for (int i = 0; i < s.difference().subtract_size(); ++i)
           shape(s.difference().subtract(i), idx(cat(f, "difference.subtract"), i), false);
         break;
       case v1::Shape::kShell:
-        if (!s.shell().has_inner()) error(cat(f, "shell.inner"), "is required");
-        else shape(s.shell().inner(), cat(f, "shell.inner"), false);
+        if (!s.shell().has_inner())
+          error(cat(f, "shell.inner"), "is required");
+        else
+          shape(s.shell().inner(), cat(f, "shell.inner"), false);
         if (s.shell().has_thickness()) positive(s.shell().thickness(), cat(f, "shell.thickness"));
         break;
     }
@@ -243,8 +264,8 @@ class Validator {
         const std::string tfld = cat(f, lin ? "piecewise_linear" : "piecewise_constant");
         if (t.times_size() == 0) error(cat(tfld, "times"), "is empty");
         if (t.times_size() != t.values_size())
-          error(cat(tfld, "values"), "needs as many values as times (" +
-                                         std::to_string(t.times_size()) + ")");
+          error(cat(tfld, "values"),
+                "needs as many values as times (" + std::to_string(t.times_size()) + ")");
         for (int i = 1; i < t.times_size(); ++i)
           if (!(t.times(i) > t.times(i - 1)))
             error(idx(cat(tfld, "times"), i), "times must be strictly increasing");
@@ -267,21 +288,25 @@ class Validator {
     time_function(m.angular_velocity(), cat(f, "angular_velocity"));
     vec(m.center(), cat(f, "center"));
     vec(m.axis(), cat(f, "axis"));
-    if (c_.dimension() == 3 && m.has_angular_velocity() &&
-        m.axis().x() == 0 && m.axis().y() == 0 && m.axis().z() == 0)
+    if (c_.dimension() == 3 && m.has_angular_velocity() && m.axis().x() == 0 && m.axis().y() == 0 &&
+        m.axis().z() == 0)
       error(cat(f, "axis"), "a 3D rotation needs a non-zero axis");
   }
 
   void fluid(const v1::FluidRegion& r, const std::string& f) {
     material_ref(r.material(), v1::FLUID, cat(f, "material"), true);
-    if (!r.has_shape()) error(cat(f, "shape"), "is required");
-    else shape(r.shape(), cat(f, "shape"), true);
+    if (!r.has_shape())
+      error(cat(f, "shape"), "is required");
+    else
+      shape(r.shape(), cat(f, "shape"), true);
     vec(r.initial_velocity(), cat(f, "initial_velocity"));
     if (r.initial_velocity_field().has_taylor_green()) {
       const auto& tg = r.initial_velocity_field().taylor_green();
-      if (c_.dimension() != 2) error(cat(f, "initial_velocity_field.taylor_green"), "only in 2D cases");
+      if (c_.dimension() != 2)
+        error(cat(f, "initial_velocity_field.taylor_green"), "only in 2D cases");
       positive(tg.wavelength(), cat(f, "initial_velocity_field.taylor_green.wavelength"));
-      if (!finite(tg.amplitude())) error(cat(f, "initial_velocity_field.taylor_green.amplitude"), "must be finite");
+      if (!finite(tg.amplitude()))
+        error(cat(f, "initial_velocity_field.taylor_green.amplitude"), "must be finite");
     }
     if (!(r.position_jitter() >= 0 && r.position_jitter() <= 0.5))
       error(cat(f, "position_jitter"), "must be in [0, 0.5] (a fraction of dx)");
@@ -296,19 +321,24 @@ class Validator {
   }
 
   void wall(const v1::Wall& w, const std::string& f) {
-    if (!w.has_shape()) error(cat(f, "shape"), "is required");
-    else shape(w.shape(), cat(f, "shape"), true);
+    if (!w.has_shape())
+      error(cat(f, "shape"), "is required");
+    else
+      shape(w.shape(), cat(f, "shape"), true);
     material_ref(w.material(), v1::SOLID, cat(f, "material"), false);
     if (w.has_motion()) motion(w.motion(), cat(f, "motion"));
     if (w.has_temperature())
-      error(cat(f, "temperature"), "not implemented yet: heat conduction (wall temperature schedules)");
+      error(cat(f, "temperature"),
+            "not implemented yet: heat conduction (wall temperature schedules)");
     if (w.has_concentration())
       error(cat(f, "concentration"), "not implemented yet: concentration diffusion");
   }
 
   void body(const v1::RigidBody& b, const std::string& f) {
-    if (!b.has_shape()) error(cat(f, "shape"), "is required");
-    else shape(b.shape(), cat(f, "shape"), true);
+    if (!b.has_shape())
+      error(cat(f, "shape"), "is required");
+    else
+      shape(b.shape(), cat(f, "shape"), true);
     material_ref(b.material(), v1::SOLID, cat(f, "material"), true);
     if (!b.name().empty() && !body_names_.insert(b.name()).second)
       error(cat(f, "name"), "duplicate body name '" + b.name() + "'");
@@ -316,11 +346,15 @@ class Validator {
     const auto& w = b.initial_angular_velocity();  // 2D: the z component is the rotation
     if (!finite(w.x()) || !finite(w.y()) || !finite(w.z()))
       error(cat(f, "initial_angular_velocity"), "must be finite");
-    if (c_.dimension() == 2 && (b.initial_angular_velocity().x() != 0 || b.initial_angular_velocity().y() != 0))
-      error(cat(f, "initial_angular_velocity"), "a 2D body rotates about z only (x and y must be 0)");
+    if (c_.dimension() == 2 &&
+        (b.initial_angular_velocity().x() != 0 || b.initial_angular_velocity().y() != 0))
+      error(cat(f, "initial_angular_velocity"),
+            "a 2D body rotates about z only (x and y must be 0)");
     if (b.motion_type() == v1::PRESCRIBED) {
-      if (!b.has_motion()) error(cat(f, "motion"), "a PRESCRIBED body needs a motion");
-      else motion(b.motion(), cat(f, "motion"));
+      if (!b.has_motion())
+        error(cat(f, "motion"), "a PRESCRIBED body needs a motion");
+      else
+        motion(b.motion(), cat(f, "motion"));
     } else if (b.has_motion()) {
       error(cat(f, "motion"), "only used with motion_type: PRESCRIBED");
     }
@@ -330,7 +364,8 @@ class Validator {
     } else if (!b.buoyancy_fluid().empty()) {
       error(cat(f, "buoyancy_fluid"), "only used with body_force: BUOYANCY_REDUCED");
     }
-    if (b.has_initial_temperature()) error(cat(f, "initial_temperature"), "not implemented yet: heat conduction");
+    if (b.has_initial_temperature())
+      error(cat(f, "initial_temperature"), "not implemented yet: heat conduction");
     if (b.has_initial_concentration())
       error(cat(f, "initial_concentration"), "not implemented yet: concentration diffusion");
   }
@@ -339,8 +374,10 @@ class Validator {
     const auto& k = c_.contact();
     positive(k.stiffness(), "contact.stiffness");
     non_negative(k.damping(), "contact.damping");
-    if (k.has_friction()) error("contact.friction", "not implemented yet: tangential (Coulomb) friction");
-    if (c_.bodies_size() == 0) error("contact", "contact is configured but the case has no rigid bodies");
+    if (k.has_friction())
+      error("contact.friction", "not implemented yet: tangential (Coulomb) friction");
+    if (c_.bodies_size() == 0)
+      error("contact", "contact is configured but the case has no rigid bodies");
   }
 
   void not_implemented() {
@@ -368,7 +405,9 @@ class Validator {
       error("time.cfl_factor", "must be in (0, 2] (got " + num(t.cfl_factor()) + ")");
     non_negative(t.fixed_dt(), "time.fixed_dt");
     if (c_.fluids_size() == 0 && !(t.fixed_dt() > 0))
-      error("time.fixed_dt", "is required when the case has no fluid (the bound of Fuchs 2021 eq. 41 needs a sound speed)");
+      error("time.fixed_dt",
+            "is required when the case has no fluid (the bound of Fuchs 2021 eq. 41 needs a sound "
+            "speed)");
     if (t.max_steps() < 0) error("time.max_steps", "must be >= 0");
     const auto& o = c_.output();
     non_negative(o.interval(), "output.interval");
@@ -378,7 +417,8 @@ class Validator {
       if (!(o.times(i) >= 0) || o.times(i) > t.end_time())
         error(idx("output.times", i), "must be within [0, time.end_time]");
     const auto& g = c_.guards();
-    if (g.has_max_density_deviation()) positive(g.max_density_deviation(), "guards.max_density_deviation");
+    if (g.has_max_density_deviation())
+      positive(g.max_density_deviation(), "guards.max_density_deviation");
     if (g.has_min_dt_fraction()) positive(g.min_dt_fraction(), "guards.min_dt_fraction");
     if (g.has_max_mach()) positive(g.max_mach(), "guards.max_mach");
     non_negative(c_.stop().max_wall_seconds(), "stop.max_wall_seconds");
@@ -390,8 +430,10 @@ class Validator {
     for (int i = 0; i < c_.probes_size(); ++i) {
       const auto& p = c_.probes(i);
       const std::string f = idx("probes", i);
-      if (p.name().empty()) error(cat(f, "name"), "must not be empty");
-      else if (!seen.insert(p.name()).second) error(cat(f, "name"), "duplicate probe name '" + p.name() + "'");
+      if (p.name().empty())
+        error(cat(f, "name"), "must not be empty");
+      else if (!seen.insert(p.name()).second)
+        error(cat(f, "name"), "duplicate probe name '" + p.name() + "'");
       vec(p.position(), cat(f, "position"));
       vec(p.line_end(), cat(f, "line_end"));
       if (p.count() < 0 || p.count() > 10000) error(cat(f, "count"), "must be in [0, 10000]");
@@ -401,7 +443,8 @@ class Validator {
   void size_limit() {
     if (!errors_.empty()) return;  // shapes must be valid to estimate
     const CaseEstimate e = estimate_case(c_);
-    if (e.total() < 1) error("fluids", "the case places no particles (check shapes against domain and dx)");
+    if (e.total() < 1)
+      error("fluids", "the case places no particles (check shapes against domain and dx)");
     if (limits_.max_particles > 0 && e.total() > limits_.max_particles)
       error("dx", "case too large: about " + num(e.total()) + " particles, the limit is " +
                       num(limits_.max_particles) + " (increase dx or shrink the domain)");

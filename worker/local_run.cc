@@ -17,7 +17,9 @@ namespace sph::worker {
 namespace {
 
 std::atomic<bool> g_interrupt{false};
-extern "C" void on_signal(int) { g_interrupt.store(true); }
+extern "C" void on_signal(int) {
+  g_interrupt.store(true);
+}
 
 void usage() {
   std::fprintf(stderr,
@@ -58,11 +60,16 @@ int run_local(int argc, char** argv) {
       return true;
     };
     bool ok = true;
-    if (a == "--case") ok = next(case_path);
-    else if (a == "--out") ok = next(out_dir);
-    else if (a == "--resume") ok = next(resume);
-    else if (a == "--quiet") quiet = true;
-    else ok = false;
+    if (a == "--case")
+      ok = next(case_path);
+    else if (a == "--out")
+      ok = next(out_dir);
+    else if (a == "--resume")
+      ok = next(resume);
+    else if (a == "--quiet")
+      quiet = true;
+    else
+      ok = false;
     if (!ok) {
       usage();
       return kExitError;
@@ -94,7 +101,9 @@ int run_local(int argc, char** argv) {
   RunOptions opt;
   opt.output_dir = std::filesystem::absolute(out_dir).string();
   opt.resume_from = resume;
-  if (!resume.empty()) opt.previous_result = (std::filesystem::path(resume).parent_path().parent_path() / "result.h5").string();
+  if (!resume.empty())
+    opt.previous_result =
+        (std::filesystem::path(resume).parent_path().parent_path() / "result.h5").string();
   opt.case_text = read_text_file(case_path);
   opt.metadata["mode"] = "local";
   opt.metadata["case_file"] = std::filesystem::absolute(case_path).string();

@@ -8,7 +8,8 @@
 namespace sph {
 
 template <int D>
-RigidBodies<D>::RigidBodies(ParticleStore<D>& s, const v1::Case& c, const std::vector<double>& solid_density,
+RigidBodies<D>::RigidBodies(ParticleStore<D>& s, const v1::Case& c,
+                            const std::vector<double>& solid_density,
                             const std::vector<double>& fluid_density_of_body)
     : s_(s),
       body_(s.template add<std::int32_t>("body", kName, true)),
@@ -63,7 +64,8 @@ void RigidBodies<D>::initialize(const Comm& comm, double dx, const std::vector<V
   }
   // Pass 2 (eqs. 21, 23): inertia about the centre of mass, with the particles' own inertia
   // (Remark 13): disks of radius dx/sqrt(pi) in 2D, spheres of radius (3/(4 pi))^(1/3) dx in 3D.
-  const double r_eff = D == 2 ? dx / std::sqrt(std::numbers::pi) : std::cbrt(0.75 / std::numbers::pi) * dx;
+  const double r_eff =
+      D == 2 ? dx / std::sqrt(std::numbers::pi) : std::cbrt(0.75 / std::numbers::pi) * dx;
   const double self = (D == 2 ? 0.5 : 0.4) * r_eff * r_eff;
   const std::size_t s2 = A * A;
   auto second = exact_sum(
@@ -88,13 +90,15 @@ void RigidBodies<D>::initialize(const Comm& comm, double dx, const std::vector<V
   for (std::size_t k = 0; k < nb; ++k) {
     RigidBody<D>& b = bodies_[k];
     for (int p = 0; p < A; ++p)
-      for (int q = 0; q < A; ++q) b.inertia_body(p, q) = second[k * s2 + static_cast<size_t>(A * p + q)];
+      for (int q = 0; q < A; ++q)
+        b.inertia_body(p, q) = second[k * s2 + static_cast<size_t>(A * p + q)];
     b.velocity = b.moves_freely() ? v0[k] : Vec<D>::Zero();
     b.omega = b.moves_freely() ? w0[k] : AngVec<D>::Zero();
     b.angular_momentum = b.world_inertia_times(b.omega);
   }
   for (std::size_t i = 0; i < s_.owned(); ++i)
-    if (s_.kind[i] == Kind::kRigid) offset_[i] = s_.x[i] - bodies_[static_cast<size_t>(body_[i])].com;
+    if (s_.kind[i] == Kind::kRigid)
+      offset_[i] = s_.x[i] - bodies_[static_cast<size_t>(body_[i])].com;
   update_accelerations(0.0);
 }
 
@@ -156,9 +160,10 @@ void RigidBodies<D>::place_owned_particles() {
     const std::size_t k = static_cast<std::size_t>(body_[i]);
     const RigidBody<D>& b = bodies_[k];
     const Vec<D> r = R[k] * offset_[i];
-    s_.x[i] = b.com + r;                      // eq. 36
+    s_.x[i] = b.com + r;                          // eq. 36
     s_.v[i] = b.velocity + cross<D>(b.omega, r);  // eq. 36
-    accel_[i] = b.acceleration + cross<D>(b.angular_acceleration, r) + cross<D>(b.omega, cross<D>(b.omega, r));
+    accel_[i] = b.acceleration + cross<D>(b.angular_acceleration, r) +
+                cross<D>(b.omega, cross<D>(b.omega, r));
   }
 }
 
@@ -193,7 +198,8 @@ void RigidBodies<D>::reduce_fluid_forces(const Comm& comm) {
       comm);
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
     for (int a = 0; a < D; ++a) bodies_[k].fluid_force[a] = sums[k * per + static_cast<size_t>(a)];
-    for (int a = 0; a < A; ++a) bodies_[k].fluid_torque[a] = sums[k * per + D + static_cast<size_t>(a)];
+    for (int a = 0; a < A; ++a)
+      bodies_[k].fluid_torque[a] = sums[k * per + D + static_cast<size_t>(a)];
   }
 }
 
@@ -203,15 +209,18 @@ void RigidBodies<D>::update_accelerations(double t) {
     if (b.motion == BodyMotion::kFree) {
       b.acceleration = (b.fluid_force + b.contact_force) / b.mass + body_force(b, t);
       AngVec<D> m = b.fluid_torque + b.contact_torque;
-      if constexpr (D == 3) m -= AngVec<D>(Eigen::Vector3d(b.omega).cross(Eigen::Vector3d(b.angular_momentum)));
+      if constexpr (D == 3)
+        m -= AngVec<D>(Eigen::Vector3d(b.omega).cross(Eigen::Vector3d(b.angular_momentum)));
       b.angular_acceleration = b.inverse_inertia(m);
     } else if (b.motion == BodyMotion::kPrescribed) {
       Point3 c0 = Point3::Zero();
       for (int a = 0; a < D; ++a) c0[a] = b.com0[a];
       const Point3 acc = b.path.acceleration(c0, t);
       for (int a = 0; a < D; ++a) b.acceleration[a] = acc[a];
-      if constexpr (D == 2) b.angular_acceleration[0] = b.path.angular_acceleration(t);
-      else b.angular_acceleration = b.path.angular_acceleration(t) * b.path.axis();
+      if constexpr (D == 2)
+        b.angular_acceleration[0] = b.path.angular_acceleration(t);
+      else
+        b.angular_acceleration = b.path.angular_acceleration(t) * b.path.axis();
     } else {
       b.acceleration.setZero();
       b.angular_acceleration.setZero();
@@ -245,7 +254,8 @@ void RigidBodies<D>::save(std::map<std::string, double>& st) const {
     st[p + "mass"] = b.mass;
     st[p + "particles"] = static_cast<double>(b.particles);
     put(st, p + "com0", b.com0);
-    for (int a = 0; a < A * A; ++a) st[p + "inertia." + std::to_string(a)] = b.inertia_body(a / A, a % A);
+    for (int a = 0; a < A * A; ++a)
+      st[p + "inertia." + std::to_string(a)] = b.inertia_body(a / A, a % A);
     put(st, p + "com", b.com);
     put(st, p + "velocity", b.velocity);
     put(st, p + "omega", b.omega);
@@ -256,8 +266,10 @@ void RigidBodies<D>::save(std::map<std::string, double>& st) const {
     put(st, p + "contact_torque", b.contact_torque);
     put(st, p + "acceleration", b.acceleration);
     put(st, p + "angular_acceleration", b.angular_acceleration);
-    if constexpr (D == 2) st[p + "angle"] = b.orientation.angle;
-    else put(st, p + "quaternion", b.orientation.q.coeffs());
+    if constexpr (D == 2)
+      st[p + "angle"] = b.orientation.angle;
+    else
+      put(st, p + "quaternion", b.orientation.q.coeffs());
   }
 }
 
@@ -269,7 +281,8 @@ void RigidBodies<D>::load(const std::map<std::string, double>& st) {
     b.mass = st.at(p + "mass");
     b.particles = static_cast<std::int64_t>(st.at(p + "particles"));
     get(st, p + "com0", b.com0);
-    for (int a = 0; a < A * A; ++a) b.inertia_body(a / A, a % A) = st.at(p + "inertia." + std::to_string(a));
+    for (int a = 0; a < A * A; ++a)
+      b.inertia_body(a / A, a % A) = st.at(p + "inertia." + std::to_string(a));
     get(st, p + "com", b.com);
     get(st, p + "velocity", b.velocity);
     get(st, p + "omega", b.omega);
@@ -280,7 +293,8 @@ void RigidBodies<D>::load(const std::map<std::string, double>& st) {
     get(st, p + "contact_torque", b.contact_torque);
     get(st, p + "acceleration", b.acceleration);
     get(st, p + "angular_acceleration", b.angular_acceleration);
-    if constexpr (D == 2) b.orientation.angle = st.at(p + "angle");
+    if constexpr (D == 2)
+      b.orientation.angle = st.at(p + "angle");
     else {
       auto c = b.orientation.q.coeffs();
       get(st, p + "quaternion", c);

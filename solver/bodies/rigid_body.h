@@ -53,21 +53,25 @@ using Mat = Eigen::Matrix<double, D, D>;
 // omega x r (2D: omega about z).
 template <int D>
 inline Vec<D> cross(const AngVec<D>& w, const Vec<D>& r) {
-  if constexpr (D == 2) return Vec<D>(-w[0] * r[1], w[0] * r[0]);
-  else return Vec<D>(Eigen::Vector3d(w).cross(Eigen::Vector3d(r)));
+  if constexpr (D == 2)
+    return Vec<D>(-w[0] * r[1], w[0] * r[0]);
+  else
+    return Vec<D>(Eigen::Vector3d(w).cross(Eigen::Vector3d(r)));
 }
 // r x f (2D: the z component).
 template <int D>
 inline AngVec<D> moment(const Vec<D>& r, const Vec<D>& f) {
-  if constexpr (D == 2) return AngVec<D>(r[0] * f[1] - r[1] * f[0]);
-  else return AngVec<D>(Eigen::Vector3d(r).cross(Eigen::Vector3d(f)));
+  if constexpr (D == 2)
+    return AngVec<D>(r[0] * f[1] - r[1] * f[0]);
+  else
+    return AngVec<D>(Eigen::Vector3d(r).cross(Eigen::Vector3d(f)));
 }
 
 template <int D>
 struct RigidBody {
   std::string name;
   BodyMotion motion = BodyMotion::kFree;
-  MotionPath path;             // prescribed motion
+  MotionPath path;               // prescribed motion
   double body_force_factor = 1;  // 1 for gravity, (rho_s - rho_f)/rho_s buoyancy-reduced
 
   // Mass properties (eqs. 20-23): total mass, centre of mass, inertia in the body frame
@@ -95,14 +99,16 @@ struct RigidBody {
 
   // World-frame inertia and its inverse applied to a vector.
   AngVec<D> inverse_inertia(const AngVec<D>& m) const {
-    if constexpr (D == 2) return AngVec<D>(m[0] / inertia_body(0, 0));
+    if constexpr (D == 2)
+      return AngVec<D>(m[0] / inertia_body(0, 0));
     else {
       const Eigen::Matrix3d R = orientation.matrix();
       return R * inertia_body.ldlt().solve(R.transpose() * m);
     }
   }
   AngVec<D> world_inertia_times(const AngVec<D>& w) const {
-    if constexpr (D == 2) return AngVec<D>(inertia_body(0, 0) * w[0]);
+    if constexpr (D == 2)
+      return AngVec<D>(inertia_body(0, 0) * w[0]);
     else {
       const Eigen::Matrix3d R = orientation.matrix();
       return R * (inertia_body * (R.transpose() * w));

@@ -66,14 +66,15 @@ void SpringDashpotContact<D>::evaluate(const NeighborList<D>& nl, const Comm& co
       comm);
   for (std::size_t k = 0; k < nb; ++k) {
     for (int a = 0; a < D; ++a) bs[k].contact_force[a] = sums[k * per + static_cast<size_t>(a)];
-    for (int a = 0; a < A; ++a) bs[k].contact_torque[a] = sums[k * per + D + static_cast<size_t>(a)];
+    for (int a = 0; a < A; ++a)
+      bs[k].contact_torque[a] = sums[k * per + D + static_cast<size_t>(a)];
     bs[k].contacts = static_cast<std::int64_t>(std::llround(sums[k * per + D + A]));
   }
 }
 
 template <int D>
-void SpringDashpotContact<D>::drift(const NeighborList<D>& nl, double dt, int substeps, double t_end,
-                                    const Comm& comm) {
+void SpringDashpotContact<D>::drift(const NeighborList<D>& nl, double dt, int substeps,
+                                    double t_end, const Comm& comm) {
   snapshot_step_start();
   auto& bs = bodies_.bodies();
   const double h = dt / substeps;

@@ -19,12 +19,14 @@ template <int D>
 class SpringDashpotContact {
  public:
   static constexpr const char* kName = "contact";
-  SpringDashpotContact(ParticleStore<D>& s, RigidBodies<D>& bodies, double stiffness, double damping,
-                       double dx, bool walls)
+  SpringDashpotContact(ParticleStore<D>& s, RigidBodies<D>& bodies, double stiffness,
+                       double damping, double dx, bool walls)
       : s_(s), bodies_(bodies), k_(stiffness), d_(damping), dx_(dx), walls_(walls) {}
 
   // Fuchs 2021 eq. 41: 0.22 sqrt(m_r/k_c) for the lightest rigid particle.
-  double time_step(double min_particle_mass) const { return 0.22 * std::sqrt(min_particle_mass / k_); }
+  double time_step(double min_particle_mass) const {
+    return 0.22 * std::sqrt(min_particle_mass / k_);
+  }
   // Candidates are collected up to this distance (dx plus the motion within a step).
   double candidate_range() const { return 1.5 * dx_; }
   bool with_walls() const { return walls_; }

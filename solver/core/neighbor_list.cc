@@ -40,7 +40,8 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
   cell_items_.resize(n);
   {
     std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) cell_items_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = 0; i < n; ++i)
+      cell_items_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
   }
   // Ascending id within each cell (insertion sort: cells are small and nearly sorted because
   // owned particles are kept in cell order).
@@ -63,7 +64,8 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
   long long offs[kStencil];
   {
     int k = 0;
-    const long long sx = 1, sy = dims_[0], sz = D == 3 ? static_cast<long long>(dims_[0]) * dims_[1] : 0;
+    const long long sx = 1, sy = dims_[0],
+                    sz = D == 3 ? static_cast<long long>(dims_[0]) * dims_[1] : 0;
     for (int dz = (D == 3 ? -1 : 0); dz <= (D == 3 ? 1 : 0); ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) offs[k++] = dz * sz + dy * sy + dx * sx;
@@ -84,7 +86,8 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
     const bool contacts = contact && kind[i] == Kind::kRigid;
     if (!fluid && !contacts) {
       bool any = false;
-      for (int k = 0; k < kStencil && !any; ++k) any = cell_fluid_[static_cast<std::size_t>(ci + offs[k])] > 0;
+      for (int k = 0; k < kStencil && !any; ++k)
+        any = cell_fluid_[static_cast<std::size_t>(ci + offs[k])] > 0;
       if (!any) {
         start_[i + 1] = static_cast<std::uint32_t>(nbr_.size());
         contact_start_[i + 1] = static_cast<std::uint32_t>(contact_nbr_.size());
@@ -114,24 +117,29 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
 }
 
 template <int D>
-std::vector<std::uint32_t> owned_cell_order(const ParticleStore<D>& s, const CellGrid<D>& grid, const CellBox<D>& box) {
+std::vector<std::uint32_t> owned_cell_order(const ParticleStore<D>& s, const CellGrid<D>& grid,
+                                            const CellBox<D>& box) {
   std::vector<std::pair<std::int64_t, ParticleId>> key(s.owned());
   for (std::size_t i = 0; i < s.owned(); ++i) {
     const ICoord<D> c = grid.coord(s.x[i]);
     std::int64_t lin = 0;
     for (int a = D - 1; a >= 0; --a)
-      lin = lin * (box.hi[a] - box.lo[a]) + std::clamp(c[a] - box.lo[a], 0, box.hi[a] - box.lo[a] - 1);
+      lin = lin * (box.hi[a] - box.lo[a]) +
+            std::clamp(c[a] - box.lo[a], 0, box.hi[a] - box.lo[a] - 1);
     key[i] = {lin, s.id[i]};
   }
   std::vector<std::uint32_t> order(s.owned());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
   return order;
 }
 
 template class NeighborList<2>;
 template class NeighborList<3>;
-template std::vector<std::uint32_t> owned_cell_order<2>(const ParticleStore<2>&, const CellGrid<2>&, const CellBox<2>&);
-template std::vector<std::uint32_t> owned_cell_order<3>(const ParticleStore<3>&, const CellGrid<3>&, const CellBox<3>&);
+template std::vector<std::uint32_t> owned_cell_order<2>(const ParticleStore<2>&, const CellGrid<2>&,
+                                                        const CellBox<2>&);
+template std::vector<std::uint32_t> owned_cell_order<3>(const ParticleStore<3>&, const CellGrid<3>&,
+                                                        const CellBox<3>&);
 
 }  // namespace sph

@@ -35,15 +35,21 @@ class NeighborList {
   const std::uint32_t* end(std::size_t i) const { return nbr_.data() + start_[i + 1]; }
   std::size_t pairs() const { return nbr_.size(); }
   // Contact candidates of owned rigid particle i (empty without a ContactQuery).
-  const std::uint32_t* contacts_begin(std::size_t i) const { return contact_nbr_.data() + contact_start_[i]; }
-  const std::uint32_t* contacts_end(std::size_t i) const { return contact_nbr_.data() + contact_start_[i + 1]; }
+  const std::uint32_t* contacts_begin(std::size_t i) const {
+    return contact_nbr_.data() + contact_start_[i];
+  }
+  const std::uint32_t* contacts_end(std::size_t i) const {
+    return contact_nbr_.data() + contact_start_[i + 1];
+  }
   std::size_t contact_pairs() const { return contact_nbr_.size(); }
   // Smallest distance between contact candidates on this rank (infinity if none).
   double min_contact_distance() const { return min_contact_; }
   std::size_t bytes() const {
-    return (nbr_.capacity() + start_.capacity() + contact_nbr_.capacity() + contact_start_.capacity()) *
+    return (nbr_.capacity() + start_.capacity() + contact_nbr_.capacity() +
+            contact_start_.capacity()) *
                sizeof(std::uint32_t) +
-           (cell_start_.capacity() + cell_items_.capacity() + cell_of_.capacity()) * sizeof(std::uint32_t);
+           (cell_start_.capacity() + cell_items_.capacity() + cell_of_.capacity()) *
+               sizeof(std::uint32_t);
   }
 
   // Calls fn(j) for every particle (owned or ghost) in the 3^D cells around the global cell
@@ -55,15 +61,16 @@ class NeighborList {
     for (int dz = (D == 3 ? -1 : 0); dz <= (D == 3 ? 1 : 0); ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-          std::size_t lin = static_cast<std::size_t>(l[0] + dx) +
-                            static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(l[1] + dy);
+          std::size_t lin =
+              static_cast<std::size_t>(l[0] + dx) +
+              static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(l[1] + dy);
           if constexpr (D == 3)
             lin += static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(dims_[1]) *
                    static_cast<std::size_t>(l[2] + dz);
-          for (std::uint32_t q = cell_start_[lin]; q < cell_start_[lin + 1]; ++q) fn(cell_items_[q]);
+          for (std::uint32_t q = cell_start_[lin]; q < cell_start_[lin + 1]; ++q)
+            fn(cell_items_[q]);
         }
   }
-
 
  private:
   CellBox<D> box_;
@@ -77,6 +84,7 @@ class NeighborList {
 // The owned particles (all inside `box`) ordered by (cell, id): the memory order that keeps
 // neighbours close.
 template <int D>
-std::vector<std::uint32_t> owned_cell_order(const ParticleStore<D>& s, const CellGrid<D>& grid, const CellBox<D>& box);
+std::vector<std::uint32_t> owned_cell_order(const ParticleStore<D>& s, const CellGrid<D>& grid,
+                                            const CellBox<D>& box);
 
 }  // namespace sph

@@ -27,8 +27,11 @@ namespace sph {
 class ColumnBase {
  public:
   ColumnBase(std::string name, std::string owner, bool persistent, std::size_t elem_bytes)
-      : name_(std::move(name)), owner_(std::move(owner)), persistent_(persistent),
-        ghost_(persistent), elem_bytes_(elem_bytes) {}
+      : name_(std::move(name)),
+        owner_(std::move(owner)),
+        persistent_(persistent),
+        ghost_(persistent),
+        elem_bytes_(elem_bytes) {}
   virtual ~ColumnBase() = default;
   const std::string& name() const { return name_; }
   const std::string& owner() const { return owner_; }
@@ -133,15 +136,15 @@ class ParticleStore {
   std::size_t persistent_bytes_per_particle() const;
 
   // Core columns.
-  Column<Vec<D>>& x;         // position
-  Column<Vec<D>>& v;         // velocity (fluid: evolved; wall/rigid: prescribed motion)
-  Column<Vec<D>>& a;         // acceleration from the last force evaluation (KDK needs a^n)
-  Column<double>& rho;       // density (walls: Adami 2012 eq. 28, recomputed each step)
-  Column<double>& p;         // pressure (walls: Adami 2012 eq. 27)
-  Column<double>& m;         // mass
+  Column<Vec<D>>& x;    // position
+  Column<Vec<D>>& v;    // velocity (fluid: evolved; wall/rigid: prescribed motion)
+  Column<Vec<D>>& a;    // acceleration from the last force evaluation (KDK needs a^n)
+  Column<double>& rho;  // density (walls: Adami 2012 eq. 28, recomputed each step)
+  Column<double>& p;    // pressure (walls: Adami 2012 eq. 27)
+  Column<double>& m;    // mass
   Column<Kind>& kind;
   Column<std::uint16_t>& material;
-  Column<ParticleId>& id;    // global id, unique and stable for the run
+  Column<ParticleId>& id;  // global id, unique and stable for the run
 };
 
 }  // namespace sph

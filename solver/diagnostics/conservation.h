@@ -16,7 +16,8 @@ struct ConservationSample {
 };
 
 template <int D>
-ConservationSample<D> conservation(const ParticleStore<D>& s, const Vec<D>& gravity, const Comm& comm) {
+ConservationSample<D> conservation(const ParticleStore<D>& s, const Vec<D>& gravity,
+                                   const Comm& comm) {
   std::vector<double> acc(4 + D, 0.0);
   for (std::size_t i = 0; i < s.owned(); ++i) {
     if (s.kind[i] != Kind::kFluid) continue;

@@ -22,15 +22,17 @@ struct GuardSettings {
 
 template <int D>
 struct GuardScan {
-  std::string violation;      // empty when all checks pass on this rank
-  double max_speed = 0;       // over owned fluid particles (for the time step)
-  double max_density_dev = 0; // over owned fluid particles
+  std::string violation;       // empty when all checks pass on this rank
+  double max_speed = 0;        // over owned fluid particles (for the time step)
+  double max_density_dev = 0;  // over owned fluid particles
 };
 
 inline std::string format_vec(const double* x, int d) {
   char buf[128];
-  if (d == 2) std::snprintf(buf, sizeof buf, "(%.6g, %.6g)", x[0], x[1]);
-  else std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", x[0], x[1], x[2]);
+  if (d == 2)
+    std::snprintf(buf, sizeof buf, "(%.6g, %.6g)", x[0], x[1]);
+  else
+    std::snprintf(buf, sizeof buf, "(%.6g, %.6g, %.6g)", x[0], x[1], x[2]);
   return buf;
 }
 
@@ -42,11 +44,13 @@ GuardScan<D> scan_particles(const ParticleStore<D>& s, const std::vector<FluidCo
   GuardScan<D> out;
   auto fail = [&](std::size_t i, const std::string& what) {
     if (!out.violation.empty()) return;
-    const char* kind = s.kind[i] == Kind::kFluid ? "fluid" : s.kind[i] == Kind::kWall ? "wall" : "rigid";
+    const char* kind = s.kind[i] == Kind::kFluid  ? "fluid"
+                       : s.kind[i] == Kind::kWall ? "wall"
+                                                  : "rigid";
     std::string mat = s.material[i] < mats.size() ? mats[s.material[i]].name : "-";
     char buf[160];
-    std::snprintf(buf, sizeof buf, " at particle id %lld (%s, material %s) at ", static_cast<long long>(s.id[i]),
-                  kind, mat.c_str());
+    std::snprintf(buf, sizeof buf, " at particle id %lld (%s, material %s) at ",
+                  static_cast<long long>(s.id[i]), kind, mat.c_str());
     char tail[96];
     std::snprintf(tail, sizeof tail, ", step %lld, t = %.9g", static_cast<long long>(step), t);
     out.violation = what + buf + format_vec(s.x[i].data(), D) + tail;
@@ -58,9 +62,11 @@ GuardScan<D> scan_particles(const ParticleStore<D>& s, const std::vector<FluidCo
       continue;
     }
     for (int a = 0; a < D; ++a)
-      if (!periodic[a] && (x[a] < lo[a] - 1e-9 * (hi[a] - lo[a]) || x[a] > hi[a] + 1e-9 * (hi[a] - lo[a]))) {
+      if (!periodic[a] &&
+          (x[a] < lo[a] - 1e-9 * (hi[a] - lo[a]) || x[a] > hi[a] + 1e-9 * (hi[a] - lo[a]))) {
         char buf[96];
-        std::snprintf(buf, sizeof buf, "particle left the domain along %c (domain [%g, %g])", "xyz"[a], lo[a], hi[a]);
+        std::snprintf(buf, sizeof buf, "particle left the domain along %c (domain [%g, %g])",
+                      "xyz"[a], lo[a], hi[a]);
         fail(i, buf);
       }
     if (s.kind[i] != Kind::kFluid) continue;
@@ -75,13 +81,16 @@ GuardScan<D> scan_particles(const ParticleStore<D>& s, const std::vector<FluidCo
     out.max_density_dev = std::max(out.max_density_dev, dev);
     if (dev > g.max_density_deviation) {
       char buf[128];
-      std::snprintf(buf, sizeof buf, "density deviation |rho/rho0 - 1| = %.4g exceeds %.4g (guards.max_density_deviation)",
-                    dev, g.max_density_deviation);
+      std::snprintf(
+          buf, sizeof buf,
+          "density deviation |rho/rho0 - 1| = %.4g exceeds %.4g (guards.max_density_deviation)",
+          dev, g.max_density_deviation);
       fail(i, buf);
     }
     if (speed > g.max_mach * f.c) {
       char buf[128];
-      std::snprintf(buf, sizeof buf, "speed %.4g exceeds %.3g x sound speed %.4g (guards.max_mach)", speed, g.max_mach, f.c);
+      std::snprintf(buf, sizeof buf, "speed %.4g exceeds %.3g x sound speed %.4g (guards.max_mach)",
+                    speed, g.max_mach, f.c);
       fail(i, buf);
     }
   }

@@ -1,8 +1,8 @@
 #pragma once
 // Velocity-Verlet time integration in kick-drift-kick form (Fuchs 2021 eqs. 30, 32, 38),
 // with the transport velocity of Adami, Hu, Adams 2013 (eqs. 14-16 there):
-//   u^{n+1/2} = u^n + dt/2 a^n,   u~^{n+1/2} = u^{n+1/2} + dt/2 a~^n,   r^{n+1} = r^n + dt u~^{n+1/2},
-//   u^{n+1} = u^{n+1/2} + dt/2 a^{n+1}.
+//   u^{n+1/2} = u^n + dt/2 a^n,   u~^{n+1/2} = u^{n+1/2} + dt/2 a~^n,   r^{n+1} = r^n + dt
+//   u~^{n+1/2}, u^{n+1} = u^{n+1/2} + dt/2 a^{n+1}.
 // Only owned fluid particles are integrated; walls follow their prescribed motion.
 #include "solver/core/particle_store.h"
 

@@ -19,9 +19,7 @@ class TimeStepBound {
     if (body_max > 0) constant_ = std::min(constant_, 0.25 * std::sqrt(h / body_max));
   }
   // dt for the current largest speed.
-  double dt(double u_max) const {
-    return f_ * std::min(0.25 * h_ / (c_ + u_max), constant_);
-  }
+  double dt(double u_max) const { return f_ * std::min(0.25 * h_ / (c_ + u_max), constant_); }
   std::string limited_by(double u_max) const {
     return 0.25 * h_ / (c_ + u_max) <= constant_ ? "acoustic" : "viscous/body force";
   }

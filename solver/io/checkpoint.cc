@@ -26,7 +26,8 @@ void write_checkpoint(const Comm& comm, const std::string& path, const ParticleS
     h5::Handle pg = h5::open_or_create_group(f, "/particles");
     for (const auto& c : s.columns()) {
       if (!c->persistent()) continue;
-      h5::write_rows(pg, c->name(), H5T_NATIVE_UINT8, total, offset, local, c->elem_bytes(), c->bytes());
+      h5::write_rows(pg, c->name(), H5T_NATIVE_UINT8, total, offset, local, c->elem_bytes(),
+                     c->bytes());
     }
   }
   comm.barrier();
@@ -54,7 +55,8 @@ std::map<std::string, double> read_checkpoint(const Comm& comm, const std::strin
       &state);
   const auto shape = h5::dataset_shape(f, "/particles/id");
   const std::uint64_t total = shape.empty() ? 0 : shape[0];
-  const std::uint64_t P = static_cast<std::uint64_t>(comm.size()), r = static_cast<std::uint64_t>(comm.rank());
+  const std::uint64_t P = static_cast<std::uint64_t>(comm.size()),
+                      r = static_cast<std::uint64_t>(comm.rank());
   const std::uint64_t first = total * r / P, last = total * (r + 1) / P;
   s.resize(last - first, last - first);
   for (const auto& c : s.columns()) {
@@ -65,7 +67,8 @@ std::map<std::string, double> read_checkpoint(const Comm& comm, const std::strin
                                "': it was written for a different case configuration");
     const auto sh = h5::dataset_shape(f, name);
     if (sh.size() < 2 ? c->elem_bytes() != 1 : sh[1] != c->elem_bytes())
-      throw std::runtime_error("checkpoint column '" + c->name() + "' has a different element size");
+      throw std::runtime_error("checkpoint column '" + c->name() +
+                               "' has a different element size");
     h5::read_rows(f, name, H5T_NATIVE_UINT8, first, last - first, c->elem_bytes(), c->bytes());
   }
   return state;
@@ -75,7 +78,9 @@ template void write_checkpoint<2>(const Comm&, const std::string&, const Particl
                                   const std::map<std::string, double>&);
 template void write_checkpoint<3>(const Comm&, const std::string&, const ParticleStore<3>&,
                                   const std::map<std::string, double>&);
-template std::map<std::string, double> read_checkpoint<2>(const Comm&, const std::string&, ParticleStore<2>&);
-template std::map<std::string, double> read_checkpoint<3>(const Comm&, const std::string&, ParticleStore<3>&);
+template std::map<std::string, double> read_checkpoint<2>(const Comm&, const std::string&,
+                                                          ParticleStore<2>&);
+template std::map<std::string, double> read_checkpoint<3>(const Comm&, const std::string&,
+                                                          ParticleStore<3>&);
 
 }  // namespace sph

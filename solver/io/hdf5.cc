@@ -4,7 +4,9 @@
 
 namespace sph::h5 {
 
-void silence_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+void silence_errors() {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
 
 void check(herr_t status, const std::string& what) {
   if (status < 0) throw Error("HDF5: " + what + " failed");
@@ -37,7 +39,8 @@ bool exists(hid_t loc, const std::string& path) {
 }
 
 Handle open_or_create_group(hid_t loc, const std::string& path) {
-  if (exists(loc, path)) return Handle(H5Gopen2(loc, path.c_str(), H5P_DEFAULT), H5Gclose, "open group " + path);
+  if (exists(loc, path))
+    return Handle(H5Gopen2(loc, path.c_str(), H5P_DEFAULT), H5Gclose, "open group " + path);
   Handle lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose, "lcpl");
   check(H5Pset_create_intermediate_group(lcpl, 1), "intermediate groups");
   return Handle(H5Gcreate2(loc, path.c_str(), lcpl, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
@@ -46,7 +49,8 @@ Handle open_or_create_group(hid_t loc, const std::string& path) {
 
 namespace {
 void replace_attribute(hid_t obj, const std::string& name) {
-  if (H5Aexists(obj, name.c_str()) > 0) check(H5Adelete(obj, name.c_str()), "delete attribute " + name);
+  if (H5Aexists(obj, name.c_str()) > 0)
+    check(H5Adelete(obj, name.c_str()), "delete attribute " + name);
 }
 template <class T>
 void write_scalar_attr(hid_t obj, const std::string& name, hid_t type, T value) {
@@ -190,14 +194,16 @@ void append_rows(hid_t loc, const std::string& name, const std::vector<std::uint
   count[0] = nrows;
   Handle mspace(H5Screate_simple(rank, count.data(), nullptr), H5Sclose, "memory space");
   if (root) {
-    check(H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr), "hyperslab");
+    check(H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+          "hyperslab");
   } else {
     check(H5Sselect_none(fspace), "select none");
     check(H5Sselect_none(mspace), "select none");
   }
   Handle dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "dxpl");
   check(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE), "collective transfer");
-  check(H5Dwrite(dset, H5T_NATIVE_DOUBLE, mspace, fspace, dxpl, values.data()), "write series " + name);
+  check(H5Dwrite(dset, H5T_NATIVE_DOUBLE, mspace, fspace, dxpl, values.data()),
+        "write series " + name);
 }
 
 void truncate_rows(hid_t loc, const std::string& name, std::uint64_t nrows) {
@@ -217,7 +223,8 @@ std::vector<double> read_vector(hid_t loc, const std::string& name) {
   std::vector<double> out(n);
   if (n == 0) return out;
   Handle dset(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose, "open dataset " + name);
-  check(H5Dread(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), "read " + name);
+  check(H5Dread(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
+        "read " + name);
   return out;
 }
 

@@ -7,8 +7,8 @@ namespace sph {
 
 ResultFile::ResultFile(const Comm& comm, const std::string& dir)
     : comm_(comm), dir_(dir), h5_(dir + "/result.h5"), xmf_(dir + "/result.xmf") {
-  fields_ = {{"velocity", 3, "Float", 8}, {"density", 1, "Float", 8},  {"pressure", 1, "Float", 8},
-             {"mass", 1, "Float", 8},     {"id", 1, "Int", 8},         {"kind", 1, "UChar", 1},
+  fields_ = {{"velocity", 3, "Float", 8}, {"density", 1, "Float", 8}, {"pressure", 1, "Float", 8},
+             {"mass", 1, "Float", 8},     {"id", 1, "Int", 8},        {"kind", 1, "UChar", 1},
              {"material", 1, "UInt", 2}};
 }
 
@@ -37,7 +37,8 @@ void ResultFile::create(const std::map<std::string, std::string>& meta) {
     for (const auto& [k, v] : meta) h5::write_attribute(g, k, v);
     h5::open_or_create_group(f, "/snapshots");
     // Empty series so readers find every declared series even before the first sample.
-    for (const auto& [name, s] : series_) h5::append_rows(f, "/series/" + name, s.row, {}, 0, comm_.root());
+    for (const auto& [name, s] : series_)
+      h5::append_rows(f, "/series/" + name, s.row, {}, 0, comm_.root());
   }
   snapshots_.clear();
   if (comm_.root()) write_xdmf_on_root();
@@ -150,7 +151,8 @@ void ResultFile::write_snapshot(const ParticleStore<D>& s, double t, std::int64_
     h5::write_rows(g, "id", H5T_NATIVE_INT64, total, offset, local, 1, s.id.data());
     h5::write_rows(g, "kind", H5T_NATIVE_UINT8, total, offset, local, 1, s.kind.data());
     h5::write_rows(g, "material", H5T_NATIVE_UINT16, total, offset, local, 1, s.material.data());
-    for (const auto* c : int_fields_) h5::write_rows(g, c->name(), H5T_NATIVE_INT32, total, offset, local, 1, c->data());
+    for (const auto* c : int_fields_)
+      h5::write_rows(g, c->name(), H5T_NATIVE_INT32, total, offset, local, 1, c->data());
     g.reset();
     flush_into(f);
   }

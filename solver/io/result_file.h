@@ -34,7 +34,8 @@ class ResultFile {
   // Continues `previous` (an earlier attempt's result, possibly this very file): keeps its
   // snapshots and series samples up to time t and drops later ones. Returns false, and
   // starts a new file, when `previous` is missing or unreadable.
-  bool carry_over(const std::string& previous, double t, const std::map<std::string, std::string>& meta);
+  bool carry_over(const std::string& previous, double t,
+                  const std::map<std::string, std::string>& meta);
 
   // An extra per-particle field written with every snapshot (e.g. the body index).
   void add_field(const Column<std::int32_t>& c) { int_fields_.push_back(&c); }

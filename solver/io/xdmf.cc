@@ -20,13 +20,15 @@ void write_xdmf(const std::string& path, const std::string& h5_name,
       char time[64];
       std::snprintf(time, sizeof time, "%.17g", s.time);
       const std::string n = std::to_string(s.count);
-      out << "   <Grid Name=\"" << s.group.substr(s.group.rfind('/') + 1) << "\" GridType=\"Uniform\">\n"
+      out << "   <Grid Name=\"" << s.group.substr(s.group.rfind('/') + 1)
+          << "\" GridType=\"Uniform\">\n"
           << "    <Time Value=\"" << time << "\"/>\n"
           << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
           << "\" NodesPerElement=\"1\"/>\n"
           << "    <Geometry GeometryType=\"XYZ\">\n"
-          << "     <DataItem Dimensions=\"" << n << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
-          << h5_name << ":" << s.group << "/position</DataItem>\n"
+          << "     <DataItem Dimensions=\"" << n
+          << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5_name << ":"
+          << s.group << "/position</DataItem>\n"
           << "    </Geometry>\n";
       for (const auto& f : fields) {
         out << "    <Attribute Name=\"" << f.name << "\" AttributeType=\""

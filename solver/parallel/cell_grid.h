@@ -17,10 +17,10 @@ using ICoord = std::array<int, D>;
 
 template <int D>
 struct CellGrid {
-  Vec<D> lo;        // domain lower corner
-  Vec<D> length;    // domain extent
-  Vec<D> cell;      // cell size (>= r_c) along each axis
-  ICoord<D> n{};    // cells along each axis
+  Vec<D> lo;      // domain lower corner
+  Vec<D> length;  // domain extent
+  Vec<D> cell;    // cell size (>= r_c) along each axis
+  ICoord<D> n{};  // cells along each axis
   std::array<bool, D> periodic{};
 
   CellGrid() = default;
@@ -46,8 +46,10 @@ struct CellGrid {
   // Wraps periodic axes into [0, n) and clamps the others.
   ICoord<D> canonical(ICoord<D> c) const {
     for (int a = 0; a < D; ++a) {
-      if (periodic[a]) c[a] = ((c[a] % n[a]) + n[a]) % n[a];
-      else c[a] = std::clamp(c[a], 0, n[a] - 1);
+      if (periodic[a])
+        c[a] = ((c[a] % n[a]) + n[a]) % n[a];
+      else
+        c[a] = std::clamp(c[a], 0, n[a] - 1);
     }
     return c;
   }

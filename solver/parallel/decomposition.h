@@ -23,8 +23,8 @@ class Decomposition {
 
  private:
   struct Node {
-    int axis = -1;   // -1: leaf
-    int split = 0;   // cells with c[axis] < split go left
+    int axis = -1;  // -1: leaf
+    int split = 0;  // cells with c[axis] < split go left
     int left = -1, right = -1;
     int rank = -1;
   };

@@ -28,7 +28,8 @@ std::vector<double> exact_sum(std::size_t slots, ForEach&& for_each, const Comm&
   constexpr int kFractionBits = 100;  // terms < 2^100; up to 2^26 terms fit in 127 bits
   std::vector<int> shift(slots, 0);
   for (std::size_t k = 0; k < slots; ++k)
-    if (scale[k] > 0 && std::isfinite(scale[k])) shift[k] = kFractionBits - std::ilogb(scale[k]) - 1;
+    if (scale[k] > 0 && std::isfinite(scale[k]))
+      shift[k] = kFractionBits - std::ilogb(scale[k]) - 1;
   std::vector<Int128> acc(slots, 0);
   for_each([&](std::size_t k, double x) {
     if (x != 0.0) acc[k] += static_cast<Int128>(std::ldexp(x, shift[k]));
@@ -36,7 +37,8 @@ std::vector<double> exact_sum(std::size_t slots, ForEach&& for_each, const Comm&
   detail::sum_int128(acc, comm);
   std::vector<double> out(slots);
   for (std::size_t k = 0; k < slots; ++k)
-    out[k] = std::isfinite(scale[k]) ? std::ldexp(static_cast<double>(acc[k]), -shift[k]) : scale[k];
+    out[k] =
+        std::isfinite(scale[k]) ? std::ldexp(static_cast<double>(acc[k]), -shift[k]) : scale[k];
   return out;
 }
 

@@ -72,7 +72,8 @@ void Halo<D>::exchange() {
   for (int r = 0; r < P; ++r)
     if (!send_buf_[static_cast<size_t>(r)].empty())
       std::memcpy(flat.data() + send_displ[static_cast<size_t>(r)],
-                  send_buf_[static_cast<size_t>(r)].data(), send_buf_[static_cast<size_t>(r)].size());
+                  send_buf_[static_cast<size_t>(r)].data(),
+                  send_buf_[static_cast<size_t>(r)].size());
   const double t0 = MPI_Wtime();
   recv_bytes_.assign(static_cast<size_t>(P), 0);
   MPI_Alltoall(send_bytes.data(), 1, MPI_INT, recv_bytes_.data(), 1, MPI_INT, comm_.raw());
@@ -157,8 +158,10 @@ void Halo<D>::migrate(ParticleStore<D>& s) {
     }
     const ICoord<D> c = grid_.canonical(grid_.coord(x));
     const int owner = mine.contains(c) ? me : decomp_.owner(c);
-    if (owner == me) keep.push_back(static_cast<std::uint32_t>(i));
-    else send_idx_[static_cast<size_t>(owner)].push_back(static_cast<std::uint32_t>(i));
+    if (owner == me)
+      keep.push_back(static_cast<std::uint32_t>(i));
+    else
+      send_idx_[static_cast<size_t>(owner)].push_back(static_cast<std::uint32_t>(i));
   }
   std::vector<ColumnBase*> cols;
   for (const auto& c : s.columns())

@@ -18,7 +18,8 @@ class DensitySummation {
       if (s_.kind[i] != Kind::kFluid) continue;
       double sum = w0;
       const Vec<D> xi = x[i];
-      for (const std::uint32_t* j = nl.begin(i); j != nl.end(i); ++j) sum += k_.W((xi - x[*j]).norm());
+      for (const std::uint32_t* j = nl.begin(i); j != nl.end(i); ++j)
+        sum += k_.W((xi - x[*j]).norm());
       s_.rho[i] = s_.m[i] * sum;
     }
   }

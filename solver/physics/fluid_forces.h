@@ -26,16 +26,16 @@ namespace sph {
 template <int D>
 struct FluidForceInputs {
   const std::vector<FluidConstants>* fluids = nullptr;
-  Vec<D> body = Vec<D>::Zero();             // body force per unit mass on fluid particles
-  double wall_volume = 0;                    // reference volume of a dummy particle (dx^d)
-  double h = 0;                              // smoothing length
-  double alpha = 0;                          // artificial viscosity (Adami 2012 eq. 11)
-  const Column<Vec<D>>* noslip = nullptr;    // wall no-slip velocity (eq. 23)
+  Vec<D> body = Vec<D>::Zero();                       // body force per unit mass on fluid particles
+  double wall_volume = 0;                             // reference volume of a dummy particle (dx^d)
+  double h = 0;                                       // smoothing length
+  double alpha = 0;                                   // artificial viscosity (Adami 2012 eq. 11)
+  const Column<Vec<D>>* noslip = nullptr;             // wall no-slip velocity (eq. 23)
   const Column<std::uint16_t>* wall_fluid = nullptr;  // fluid whose EOS gave rho_w
   const Column<std::uint8_t>* free_slip = nullptr;    // per wall particle, or nullptr
-  Column<Vec<D>>* transport = nullptr;       // u~ (TVF)
-  Column<Vec<D>>* background = nullptr;      // a~ (TVF)
-  Column<Vec<D>>* rigid_force = nullptr;     // fluid force on each rigid particle (output)
+  Column<Vec<D>>* transport = nullptr;                // u~ (TVF)
+  Column<Vec<D>>* background = nullptr;               // a~ (TVF)
+  Column<Vec<D>>* rigid_force = nullptr;              // fluid force on each rigid particle (output)
 };
 
 // What fluid particle i receives from dummy (wall or rigid) particle j, times m_i: pressure
@@ -49,8 +49,9 @@ struct DummyPair {
   double rhoi, pi, Vi2;
   Vec<D> vi, dui;
   // s2 returns V_i^2 + V_j^2 (the transport-velocity background term needs it too).
-  Vec<D> operator()(const Vec<D>& gradW, double dwdr, double r, double pj, double rhoj_stored, bool same_fluid,
-                    const Vec<D>& noslip_j, bool free_slip_j, double wall_volume, double& s2) const {
+  Vec<D> operator()(const Vec<D>& gradW, double dwdr, double r, double pj, double rhoj_stored,
+                    bool same_fluid, const Vec<D>& noslip_j, bool free_slip_j, double wall_volume,
+                    double& s2) const {
     const double rhoj = same_fluid ? rhoj_stored : fi.density(pj);
     const double Vj = wall_volume * fi.rho0 / rhoj;
     s2 = Vi2 + Vj * Vj;
@@ -154,8 +155,8 @@ void compute_rigid_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, cons
       if constexpr (kTransport) dui = (*in.transport)[i] - s.v[i];
       const DummyPair<D, kViscous, kTransport> dummy{fi, s.rho[i], s.p[i], Vi * Vi, s.v[i], dui};
       double s2 = 0;
-      f -= dummy(gradW, dwdr, dist, s.p[r], s.rho[r], (*in.wall_fluid)[r] == s.material[i], (*in.noslip)[r],
-                 false, in.wall_volume, s2);
+      f -= dummy(gradW, dwdr, dist, s.p[r], s.rho[r], (*in.wall_fluid)[r] == s.material[i],
+                 (*in.noslip)[r], false, in.wall_volume, s2);
     }
     force[r] = f;
   }
@@ -181,7 +182,8 @@ class FluidForces {
   }
 
  private:
-  using Fn = void (*)(ParticleStore<D>&, const NeighborList<D>&, const K&, const FluidForceInputs<D>&);
+  using Fn = void (*)(ParticleStore<D>&, const NeighborList<D>&, const K&,
+                      const FluidForceInputs<D>&);
   template <bool V, bool A, bool T>
   static Fn pick(bool v, bool a, bool t) {
     if (v) return pick2<true, A, T>(a, t);
@@ -198,8 +200,11 @@ class FluidForces {
     return &compute_fluid_forces<D, K, V, A, false>;
   }
   static Fn pick_coupling(bool v, bool t) {
-    if (v) return t ? &compute_rigid_coupling<D, K, true, false, true> : &compute_rigid_coupling<D, K, true, false, false>;
-    return t ? &compute_rigid_coupling<D, K, false, false, true> : &compute_rigid_coupling<D, K, false, false, false>;
+    if (v)
+      return t ? &compute_rigid_coupling<D, K, true, false, true>
+               : &compute_rigid_coupling<D, K, true, false, false>;
+    return t ? &compute_rigid_coupling<D, K, false, false, true>
+             : &compute_rigid_coupling<D, K, false, false, false>;
   }
   Fn fn_, coupling_;
 };

@@ -57,8 +57,10 @@ class WallBoundary {
         srho += (s_.rho[f] * W) * rwf;
         sv += W * s_.v[f];
         const int mf = s_.material[f];
-        if (mat < 0) mat = mf;
-        else if (mf != mat) mixed = true;
+        if (mat < 0)
+          mat = mf;
+        else if (mf != mat)
+          mixed = true;
       }
       if (sw <= 0.0) {
         s_.p[w] = 0.0;

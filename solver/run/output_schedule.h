@@ -23,7 +23,8 @@ class OutputSchedule {
     times_.erase(std::unique(times_.begin(), times_.end(),
                              [&](double a, double b) { return std::abs(a - b) <= eps_; }),
                  times_.end());
-    series_interval_ = c.output().series_interval() > 0 ? c.output().series_interval() : end_ / 200.0;
+    series_interval_ =
+        c.output().series_interval() > 0 ? c.output().series_interval() : end_ / 200.0;
   }
 
   double end_time() const { return end_; }

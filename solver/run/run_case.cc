@@ -18,7 +18,9 @@ extern template class Simulation<2, WendlandC2<2>>;
 extern template class Simulation<3, QuinticSpline<3>>;
 extern template class Simulation<3, WendlandC2<3>>;
 
-std::string code_version() { return SPHD_VERSION; }
+std::string code_version() {
+  return SPHD_VERSION;
+}
 
 const char* to_string(RunStatus s) {
   switch (s) {

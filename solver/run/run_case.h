@@ -17,14 +17,14 @@ namespace sph {
 
 struct Progress {
   std::int64_t step = 0;
-  double time = 0;        // simulated time [s]
-  double end_time = 0;    // [s]
-  double dt = 0;          // current time step [s]
-  std::int64_t particles = 0;          // owned particles over all ranks
+  double time = 0;                       // simulated time [s]
+  double end_time = 0;                   // [s]
+  double dt = 0;                         // current time step [s]
+  std::int64_t particles = 0;            // owned particles over all ranks
   double particle_steps_per_second = 0;  // throughput since the previous report
-  double eta_seconds = -1;             // wall-clock estimate to end_time (-1 unknown)
-  double wall_seconds = 0;             // since the run (or resume) started
-  double imbalance = 1;                // max/mean owned particles per rank
+  double eta_seconds = -1;               // wall-clock estimate to end_time (-1 unknown)
+  double wall_seconds = 0;               // since the run (or resume) started
+  double imbalance = 1;                  // max/mean owned particles per rank
   int ranks = 1;
 };
 

@@ -59,7 +59,8 @@ class Simulation {
   // the next step is set, the decomposition rebalanced and memory reordered as needed.
   void start();
   struct StepReport {
-    bool violated = false, cancel = false, interrupt = false, checkpoint = false, out_of_time = false;
+    bool violated = false, cancel = false, interrupt = false, checkpoint = false,
+         out_of_time = false;
     std::string diagnosis;
   };
   StepReport step();
@@ -101,7 +102,8 @@ class Simulation {
   void integrate_step(double dt);
   struct EndOfStep {
     double max_speed = 0, max_density_dev = 0, min_contact_distance = 0;
-    bool violated = false, cancel = false, interrupt = false, checkpoint = false, out_of_time = false;
+    bool violated = false, cancel = false, interrupt = false, checkpoint = false,
+         out_of_time = false;
     std::string diagnosis;
   };
   // One reduction per step carries the time-step input and every stop/checkpoint decision.

@@ -36,7 +36,8 @@ Simulation<D, K>::Simulation(const v1::Case& c, const Comm& comm, const RunOptio
       rc_(K::kSupport * c.dx()),
       wall_volume_(std::pow(c.dx(), D)),
       kernel_(c.dx()),
-      grid_(detail::to_vec<D>(c.domain().lo()), detail::to_vec<D>(c.domain().hi()), K::kSupport * c.dx(),
+      grid_(detail::to_vec<D>(c.domain().lo()), detail::to_vec<D>(c.domain().hi()),
+            K::kSupport * c.dx(),
             [&] {
               std::array<bool, D> p{};
               p[0] = c.periodic_x();
@@ -91,7 +92,8 @@ void Simulation<D, K>::build_units() {
       any_motion = any_motion || !paths.back().is_static();
     }
     if (any_slip) {
-      free_slip_ = &s_.template add<std::uint8_t>("wall_free_slip", WallBoundary<D, K>::kName, true);
+      free_slip_ =
+          &s_.template add<std::uint8_t>("wall_free_slip", WallBoundary<D, K>::kName, true);
     }
     if (any_motion) {
       wall_motion_.emplace(s_, std::move(paths));
@@ -109,7 +111,8 @@ void Simulation<D, K>::build_units() {
     }
     bodies_.emplace(s_, c_, rho_s, rho_f);
     if (c_.has_gravity())
-      bodies_->set_gravity(detail::to_vec<D>(c_.gravity().acceleration()), c_.gravity().damping_time());
+      bodies_->set_gravity(detail::to_vec<D>(c_.gravity().acceleration()),
+                           c_.gravity().damping_time());
     units_.push_back(RigidBodies<D>::kName);
     units_.push_back("rigid_coupling");
     if (!walls_) {  // rigid particles use the wall condition too
@@ -118,7 +121,8 @@ void Simulation<D, K>::build_units() {
     }
     if (c_.has_contact()) {
       const auto& k = c_.contact();
-      contact_.emplace(s_, *bodies_, k.stiffness(), k.damping(), dx_, !k.has_with_walls() || k.with_walls());
+      contact_.emplace(s_, *bodies_, k.stiffness(), k.damping(), dx_,
+                       !k.has_with_walls() || k.with_walls());
       units_.push_back(SpringDashpotContact<D>::kName);
     }
   }
@@ -135,11 +139,13 @@ void Simulation<D, K>::build_units() {
   // Artificial viscosity as an equivalent kinematic viscosity (Adami 2012 eq. 12).
   nu_max = std::max(nu_max, alpha * h_ * c_max / (2.0 * (D + 2)));
   forces_.emplace(viscous, alpha > 0, tvf);
-  units_.push_back(std::string(FluidForces<D, K>::kName) + "[pressure" + (viscous ? "+viscous" : "") +
-                   (alpha > 0 ? "+artificial_viscosity" : "") + (tvf ? "+transport_velocity" : "") + "]");
+  units_.push_back(std::string(FluidForces<D, K>::kName) + "[pressure" +
+                   (viscous ? "+viscous" : "") + (alpha > 0 ? "+artificial_viscosity" : "") +
+                   (tvf ? "+transport_velocity" : "") + "]");
   Vec<D> g = Vec<D>::Zero();
   double t_damp = 0;
-  fluid_gravity_ = !c_.has_gravity() || !c_.gravity().has_apply_to_fluid() || c_.gravity().apply_to_fluid();
+  fluid_gravity_ =
+      !c_.has_gravity() || !c_.gravity().has_apply_to_fluid() || c_.gravity().apply_to_fluid();
   if (c_.has_gravity() && fluid_gravity_) {
     g = detail::to_vec<D>(c_.gravity().acceleration());
     t_damp = c_.gravity().damping_time();
@@ -158,7 +164,8 @@ void Simulation<D, K>::build_units() {
       set.name = p.name();
       const Vec<D> a = detail::to_vec<D>(p.position()), b = detail::to_vec<D>(p.line_end());
       const int n = std::max(1, p.count());
-      for (int k = 0; k < n; ++k) set.points.push_back(n == 1 ? a : Vec<D>(a + (b - a) * (double(k) / (n - 1))));
+      for (int k = 0; k < n; ++k)
+        set.points.push_back(n == 1 ? a : Vec<D>(a + (b - a) * (double(k) / (n - 1))));
       sets.push_back(std::move(set));
     }
     probes_.emplace(std::move(sets), kernel_);
@@ -216,7 +223,8 @@ void Simulation<D, K>::build_scene() {
   // the generation is deterministic), and all compute the same decomposition.
   std::vector<std::int64_t> counts(static_cast<size_t>(grid_.total()), 0);
   scene.for_each([&](const SceneParticle& p) {
-    ++counts[static_cast<size_t>(grid_.linear(grid_.canonical(grid_.coord(detail::to_vec<D>(p.x)))))];
+    ++counts[static_cast<size_t>(
+        grid_.linear(grid_.canonical(grid_.coord(detail::to_vec<D>(p.x)))))];
   });
   halo_.set_decomposition(Decomposition<D>(grid_, comm_.size(), counts));
   // Pass 2: keep the particles of this rank's cells; ids are global generation indices.
@@ -268,7 +276,8 @@ void Simulation<D, K>::exchange_and_search() {
   }
   Timer tm(timer("neighbor_search"));
   if (contact_) {
-    ContactQuery q{bodies_->body_index().data(), contact_->candidate_range(), contact_->with_walls()};
+    ContactQuery q{bodies_->body_index().data(), contact_->candidate_range(),
+                   contact_->with_walls()};
     nl_.build(s_, grid_, halo_.ghost_box(), rc_, &q);
   } else {
     nl_.build(s_, grid_, halo_.ghost_box(), rc_);
@@ -297,8 +306,9 @@ void Simulation<D, K>::apply_wall_condition() {
   if (!walls_) return;
   {
     Timer tm(timer(WallBoundary<D, K>::kName));
-    walls_->run(nl_, fluid_body_force(t_),
-                s_.has("wall_acceleration") ? &s_.template get<Vec<D>>("wall_acceleration") : nullptr);
+    walls_->run(
+        nl_, fluid_body_force(t_),
+        s_.has("wall_acceleration") ? &s_.template get<Vec<D>>("wall_acceleration") : nullptr);
   }
   Timer tm(timer("halo_exchange"));
   halo_.update(s_, {&s_.rho, &s_.p, &walls_->noslip_velocity(), &walls_->fluid_material()});
@@ -336,8 +346,10 @@ void Simulation<D, K>::move_bodies(double dt) {
     Timer tc(timer(SpringDashpotContact<D>::kName));
     const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
     // Substep only when bodies may touch during this step; otherwise one drift.
-    const int n = contact_possible_ ? std::max(1, static_cast<int>(std::ceil(dt / (factor * contact_->time_step(min_rigid_mass_)))))
-                                    : 1;
+    const int n = contact_possible_
+                      ? std::max(1, static_cast<int>(std::ceil(
+                                        dt / (factor * contact_->time_step(min_rigid_mass_)))))
+                      : 1;
     contact_->drift(nl_, dt, n, t_ + dt, comm_);
   } else {
     bodies_->drift(dt, t_ + dt);
@@ -408,18 +420,20 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
   Timer tm(timer("stability_guards"));
   const auto vmax_dom = detail::to_vec<D>(c_.domain().hi());
   const auto vmin_dom = detail::to_vec<D>(c_.domain().lo());
-  GuardScan<D> scan = scan_particles<D>(s_, fluids_, mats_, guards_, vmin_dom, vmax_dom, grid_.periodic, step_, t_);
-  std::vector<double> r = {scan.max_speed,
-                           scan.max_density_dev,
-                           scan.violation.empty() ? 0.0 : 1.0,
-                           comm_.root() && opt_.cancel_requested && opt_.cancel_requested() ? 1.0 : 0.0,
-                           opt_.interrupt && opt_.interrupt->load() ? 1.0 : 0.0,
-                           comm_.root() && checkpoint_due() ? 1.0 : 0.0,
-                           comm_.root() && c_.stop().max_wall_seconds() > 0 &&
-                                   MPI_Wtime() - wall_start_ >= c_.stop().max_wall_seconds()
-                               ? 1.0
-                               : 0.0,
-                           -nl_.min_contact_distance()};
+  GuardScan<D> scan =
+      scan_particles<D>(s_, fluids_, mats_, guards_, vmin_dom, vmax_dom, grid_.periodic, step_, t_);
+  std::vector<double> r = {
+      scan.max_speed,
+      scan.max_density_dev,
+      scan.violation.empty() ? 0.0 : 1.0,
+      comm_.root() && opt_.cancel_requested && opt_.cancel_requested() ? 1.0 : 0.0,
+      opt_.interrupt && opt_.interrupt->load() ? 1.0 : 0.0,
+      comm_.root() && checkpoint_due() ? 1.0 : 0.0,
+      comm_.root() && c_.stop().max_wall_seconds() > 0 &&
+              MPI_Wtime() - wall_start_ >= c_.stop().max_wall_seconds()
+          ? 1.0
+          : 0.0,
+      -nl_.min_contact_distance()};
   const double t0 = MPI_Wtime();
   comm_.max_inplace(r);
   comm_seconds_ += MPI_Wtime() - t0;
@@ -439,7 +453,9 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
 template <int D, class K>
 void Simulation<D, K>::sample_series() {
   Timer tm(timer("diagnostics"));
-  const Vec<D> g = fluid_gravity_ && c_.has_gravity() ? detail::to_vec<D>(c_.gravity().acceleration()) : Vec<D>::Zero();
+  const Vec<D> g = fluid_gravity_ && c_.has_gravity()
+                       ? detail::to_vec<D>(c_.gravity().acceleration())
+                       : Vec<D>::Zero();
   const ConservationSample<D> cs = conservation(s_, g, comm_);
   // One reduction for the extremes: [dev, vmax, -min_0.., max_0..].
   std::vector<double> ext(2 + 2 * D, -std::numeric_limits<double>::infinity());
@@ -450,7 +466,8 @@ void Simulation<D, K>::sample_series() {
     ext[1] = std::max(ext[1], s_.v[i].norm());
     for (int a = 0; a < D; ++a) {
       ext[2 + static_cast<size_t>(a)] = std::max(ext[2 + static_cast<size_t>(a)], -s_.x[i][a]);
-      ext[2 + D + static_cast<size_t>(a)] = std::max(ext[2 + D + static_cast<size_t>(a)], s_.x[i][a]);
+      ext[2 + D + static_cast<size_t>(a)] =
+          std::max(ext[2 + D + static_cast<size_t>(a)], s_.x[i][a]);
     }
   }
   comm_.max_inplace(ext);
@@ -462,7 +479,9 @@ void Simulation<D, K>::sample_series() {
   }
   result_.append_series("diagnostics/fluid_min", fmin);
   result_.append_series("diagnostics/fluid_max", fmax);
-  auto put = [&](const char* n, double v) { result_.append_series(std::string("diagnostics/") + n, {v}); };
+  auto put = [&](const char* n, double v) {
+    result_.append_series(std::string("diagnostics/") + n, {v});
+  };
   put("time", t_);
   put("step", static_cast<double>(step_));
   put("dt", dt_);
@@ -473,7 +492,8 @@ void Simulation<D, K>::sample_series() {
   put("max_speed", vmax);
   put("imbalance", imbalance_);
   put("fluid_particles", cs.fluid_particles);
-  result_.append_series("diagnostics/momentum", std::vector<double>(cs.momentum.data(), cs.momentum.data() + D));
+  result_.append_series("diagnostics/momentum",
+                        std::vector<double>(cs.momentum.data(), cs.momentum.data() + D));
   if (bodies_) sample_bodies();
   if (probes_) {
     Timer tp(timer(Probes<D, K>::kName));
@@ -512,8 +532,10 @@ void Simulation<D, K>::sample_bodies() {
       ft.push_back(b.fluid_torque[a]);
       ct.push_back(b.contact_torque[a]);
     }
-    if constexpr (D == 2) q.push_back(b.orientation.angle);
-    else for (int a = 0; a < 4; ++a) q.push_back(b.orientation.q.coeffs()[a]);  // x, y, z, w
+    if constexpr (D == 2)
+      q.push_back(b.orientation.angle);
+    else
+      for (int a = 0; a < 4; ++a) q.push_back(b.orientation.q.coeffs()[a]);  // x, y, z, w
     n.push_back(static_cast<double>(b.contacts));
     ke.push_back(b.kinetic_energy());
     mass.push_back(b.mass);
@@ -548,10 +570,12 @@ std::string Simulation<D, K>::write_checkpoint_now() {
   char name[64];
   std::snprintf(name, sizeof name, "ckpt_%012lld.h5", static_cast<long long>(step_));
   const std::string path = opt_.output_dir + "/checkpoints/" + name;
-  std::map<std::string, double> state = {
-      {"time", t_},           {"step", static_cast<double>(step_)},
-      {"dt", dt_},            {"dt0", dt0_},
-      {"next_series", next_series_}, {"contact_possible", contact_possible_ ? 1.0 : 0.0}};
+  std::map<std::string, double> state = {{"time", t_},
+                                         {"step", static_cast<double>(step_)},
+                                         {"dt", dt_},
+                                         {"dt0", dt0_},
+                                         {"next_series", next_series_},
+                                         {"contact_possible", contact_possible_ ? 1.0 : 0.0}};
   if (bodies_) bodies_->save(state);
   write_checkpoint(comm_, path, s_, state);
   if (comm_.root()) {
@@ -593,10 +617,14 @@ void Simulation<D, K>::report_progress(bool force) {
   last_progress_step_ = step_;
   last_progress_time_ = t_;
   if (!opt_.quiet) {
-    std::printf("step %8lld  t %-11.5g / %-9.4g  dt %-10.3e  N %-9lld  %9.3e particle-steps/s  imbalance %.2f  ETA %s\n",
-                static_cast<long long>(p.step), p.time, p.end_time, p.dt, static_cast<long long>(p.particles),
-                p.particle_steps_per_second, p.imbalance,
-                p.eta_seconds < 0 ? "-" : (std::to_string(static_cast<long long>(p.eta_seconds + 0.5)) + " s").c_str());
+    std::printf(
+        "step %8lld  t %-11.5g / %-9.4g  dt %-10.3e  N %-9lld  %9.3e particle-steps/s  imbalance "
+        "%.2f  ETA %s\n",
+        static_cast<long long>(p.step), p.time, p.end_time, p.dt,
+        static_cast<long long>(p.particles), p.particle_steps_per_second, p.imbalance,
+        p.eta_seconds < 0
+            ? "-"
+            : (std::to_string(static_cast<long long>(p.eta_seconds + 0.5)) + " s").c_str());
     std::fflush(stdout);
   }
   if (opt_.on_progress) opt_.on_progress(p);
@@ -660,9 +688,11 @@ void Simulation<D, K>::start() {
       for (const auto& b : c_.bodies()) {
         v0.push_back(detail::to_vec<D>(b.initial_velocity()));
         AngVec<D> w;
-        if constexpr (D == 2) w[0] = b.initial_angular_velocity().z();
-        else w = Eigen::Vector3d(b.initial_angular_velocity().x(), b.initial_angular_velocity().y(),
-                                 b.initial_angular_velocity().z());
+        if constexpr (D == 2)
+          w[0] = b.initial_angular_velocity().z();
+        else
+          w = Eigen::Vector3d(b.initial_angular_velocity().x(), b.initial_angular_velocity().y(),
+                              b.initial_angular_velocity().z());
         w0.push_back(w);
       }
       bodies_->initialize(comm_, dx_, v0, w0);
@@ -670,8 +700,9 @@ void Simulation<D, K>::start() {
     prime();
     {
       // Initial transport velocity and series before the first step.
-      const GuardScan<D> scan = scan_particles<D>(s_, fluids_, mats_, guards_, detail::to_vec<D>(c_.domain().lo()),
-                                               detail::to_vec<D>(c_.domain().hi()), grid_.periodic, 0, 0.0);
+      const GuardScan<D> scan =
+          scan_particles<D>(s_, fluids_, mats_, guards_, detail::to_vec<D>(c_.domain().lo()),
+                            detail::to_vec<D>(c_.domain().hi()), grid_.periodic, 0, 0.0);
       dt_ = c_.time().fixed_dt() > 0 ? c_.time().fixed_dt() : bound_->dt(comm_.max(scan.max_speed));
       dt0_ = dt_;
     }
@@ -711,7 +742,8 @@ typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
     if (dt_ < guards_.min_dt_fraction * dt0_) {
       char buf[200];
       std::snprintf(buf, sizeof buf,
-                    "time step collapsed to %.3e (< %.3g x initial %.3e, guards.min_dt_fraction) at step %lld, t = %.9g",
+                    "time step collapsed to %.3e (< %.3g x initial %.3e, guards.min_dt_fraction) "
+                    "at step %lld, t = %.9g",
                     dt_, guards_.min_dt_fraction, dt0_, static_cast<long long>(step_), t_);
       rep.violated = true;
       rep.diagnosis = buf;
@@ -780,8 +812,8 @@ RunOutcome Simulation<D, K>::run() {
     }
   }
   report_progress(true);
-  const char* st = status == RunStatus::kCompleted   ? "completed"
-                   : status == RunStatus::kCancelled ? "cancelled"
+  const char* st = status == RunStatus::kCompleted     ? "completed"
+                   : status == RunStatus::kCancelled   ? "cancelled"
                    : status == RunStatus::kInterrupted ? "interrupted"
                                                        : "unstable";
   auto meta = std::map<std::string, std::string>{{"status", st}, {"message", message}};

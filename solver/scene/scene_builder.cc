@@ -93,7 +93,9 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
         if (fluids_[k]->contains(x)) return;
       p.x = x;
       if (region.position_jitter() > 0)
-        for (int a = 0; a < d; ++a) p.x[a] += region.position_jitter() * dx * unit_random(3 * counter + static_cast<std::uint64_t>(a));
+        for (int a = 0; a < d; ++a)
+          p.x[a] += region.position_jitter() * dx *
+                    unit_random(3 * counter + static_cast<std::uint64_t>(a));
       ++counter;
       p.v = to_point(region.initial_velocity());
       if (region.initial_velocity_field().has_taylor_green()) {

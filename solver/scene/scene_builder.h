@@ -2,16 +2,16 @@
 // Builds the particles of a case: walls, then rigid bodies, then fluids, each on the lattice
 // of spacing dx inside its shape (or at explicit points), clipped to the domain. A lattice
 // point claimed by a wall is not used by a body or a fluid, one claimed by a body not by a
-// fluid, and one claimed by an earlier region of the same kind not by a later one. The order of generation is fixed, so global ids are the same on every rank and in
-// every run.
+// fluid, and one claimed by an earlier region of the same kind not by a later one. The order of
+// generation is fixed, so global ids are the same on every rank and in every run.
 #include <functional>
 #include <memory>
 #include <vector>
 
 #include "case/geometry.h"
 #include "case/materials.h"
-#include "sph/v1/case.pb.h"
 #include "solver/core/types.h"
+#include "sph/v1/case.pb.h"
 
 namespace sph {
 

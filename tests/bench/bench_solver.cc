@@ -4,6 +4,8 @@
 // Run under mpirun for the parallel numbers (tests/bench/scaling.sh drives that).
 //
 //   bench_solver [--dim 2|3] [--particles N] [--steps S] [--kernel quintic|wendland]
+//   bench_solver --case FILE [--steps S] [--skip T]   (any case; --skip advances T steps first,
+//                                                     e.g. to time bodies in contact)
 #include <mpi.h>
 
 #include <cmath>
@@ -12,6 +14,7 @@
 #include <filesystem>
 #include <string>
 
+#include "case/load.h"
 #include "solver/core/kernel.h"
 #include "solver/run/simulation.h"
 
@@ -61,19 +64,21 @@ sph::v1::Case dam_break(int dim, double n, bool wendland) {
 }
 
 template <int D, class K>
-void bench(const sph::v1::Case& c, int steps, MPI_Comm comm) {
+void bench(const sph::v1::Case& c, int steps, int skip, MPI_Comm comm) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   sph::RunOptions o;
-  o.output_dir = (std::filesystem::temp_directory_path() / ("sphd-bench-" + std::to_string(::getpid()))).string();
+  o.output_dir =
+      (std::filesystem::temp_directory_path() / ("sphd-bench-" + std::to_string(::getpid())))
+          .string();
   o.output_dir = sph::Comm(comm).broadcast(o.output_dir);  // rank 0's pid names the directory
   o.quiet = true;
   sph::Simulation<D, K> sim(c, sph::Comm(comm), o);
   const double t_setup = MPI_Wtime();
   sim.start();
   const double setup = MPI_Wtime() - t_setup;
-  for (int k = 0; k < 5; ++k) sim.step();  // warm-up: first neighbour lists, page faults
+  for (int k = 0; k < 5 + skip; ++k) sim.step();  // warm-up: first neighbour lists, page faults
   const auto units0 = sim.unit_seconds();
   const double comm0 = sim.communication_seconds();
   MPI_Barrier(comm);
@@ -97,17 +102,22 @@ void bench(const sph::v1::Case& c, int steps, MPI_Comm comm) {
   MPI_Allreduce(MPI_IN_PLACE, &comm_max, 1, MPI_DOUBLE, MPI_MAX, comm);
   const double n = static_cast<double>(sim.global_particles());
   double nf = 0;
-  for (std::size_t i = 0; i < sim.particles().owned(); ++i) nf += sim.particles().kind[i] == sph::Kind::kFluid ? 1 : 0;
+  for (std::size_t i = 0; i < sim.particles().owned(); ++i)
+    nf += sim.particles().kind[i] == sph::Kind::kFluid ? 1 : 0;
   MPI_Allreduce(MPI_IN_PLACE, &nf, 1, MPI_DOUBLE, MPI_SUM, comm);
   if (rank == 0) {
-    std::printf("bench_solver dim=%d kernel=%s ranks=%d particles=%.0f (dx=%.4g) steps=%d setup=%.2fs\n", D,
-                K::kSupport == 3.0 ? "quintic" : "wendland", size, n, c.dx(), steps, setup);
+    std::printf(
+        "bench_solver case=%s dim=%d kernel=%s ranks=%d particles=%.0f (dx=%.4g) steps=%d from "
+        "t=%.4g setup=%.2fs\n",
+        c.name().c_str(), D, K::kSupport == 3.0 ? "quintic" : "wendland", size, n, c.dx(), steps,
+        sim.time(), setup);
     std::printf("  time/step          %10.3f ms\n", 1e3 * wall / steps);
-    std::printf("  particle-steps/s   %10.3e  (%.3e per rank; all particles, walls included)\n", n * steps / wall,
-                n * steps / wall / size);
-    std::printf("  fluid p-steps/s    %10.3e  (%.3e per rank; %.0f fluid particles)\n", nf * steps / wall,
-                nf * steps / wall / size, nf);
-    std::printf("  pair interactions  %10.3e /s  (%.1f neighbours per particle)\n", pairs * steps / wall, pairs / n);
+    std::printf("  particle-steps/s   %10.3e  (%.3e per rank; all particles, walls included)\n",
+                n * steps / wall, n * steps / wall / size);
+    std::printf("  fluid p-steps/s    %10.3e  (%.3e per rank; %.0f fluid particles)\n",
+                nf * steps / wall, nf * steps / wall / size, nf);
+    std::printf("  pair interactions  %10.3e /s  (%.1f neighbours per particle)\n",
+                pairs * steps / wall, pairs / n);
     std::printf("  memory             %10.0f bytes/particle\n", bytes / n);
     std::printf("  communication      %10.1f %% of step time (rank 0), %.1f %% (slowest rank)\n",
                 100 * comm_s / wall, 100 * comm_max / wall);
@@ -127,23 +137,46 @@ void bench(const sph::v1::Case& c, int steps, MPI_Comm comm) {
 
 int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
-  int dim = 2, steps = 50;
+  int dim = 2, steps = 50, skip = 0;
+  std::string case_file;
   double particles = 20000;
   bool wendland = false;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
-    if (a == "--dim") dim = std::stoi(v);
-    else if (a == "--particles") particles = std::stod(v);
-    else if (a == "--steps") steps = std::stoi(v);
-    else if (a == "--kernel") wendland = v == "wendland";
+    if (a == "--dim")
+      dim = std::stoi(v);
+    else if (a == "--particles")
+      particles = std::stod(v);
+    else if (a == "--steps")
+      steps = std::stoi(v);
+    else if (a == "--kernel")
+      wendland = v == "wendland";
+    else if (a == "--case")
+      case_file = v;
+    else if (a == "--skip")
+      skip = std::stoi(v);
   }
-  const sph::v1::Case c = dam_break(dim, particles, wendland);
+  sph::v1::Case c =
+      case_file.empty() ? dam_break(dim, particles, wendland) : sph::load_case_file(case_file);
+  if (!case_file.empty()) {
+    dim = c.dimension();
+    wendland = c.kernel() == sph::v1::WENDLAND_C2;
+    c.mutable_time()->set_end_time(1e30);  // the benchmark decides how long it runs
+    c.mutable_time()->set_max_steps(0);
+    c.mutable_output()->set_interval(0);
+    c.mutable_output()->clear_times();
+    c.mutable_output()->set_series_interval(1e29);
+  }
   if (dim == 2) {
-    if (wendland) bench<2, sph::WendlandC2<2>>(c, steps, MPI_COMM_WORLD);
-    else bench<2, sph::QuinticSpline<2>>(c, steps, MPI_COMM_WORLD);
+    if (wendland)
+      bench<2, sph::WendlandC2<2>>(c, steps, skip, MPI_COMM_WORLD);
+    else
+      bench<2, sph::QuinticSpline<2>>(c, steps, skip, MPI_COMM_WORLD);
   } else {
-    if (wendland) bench<3, sph::WendlandC2<3>>(c, steps, MPI_COMM_WORLD);
-    else bench<3, sph::QuinticSpline<3>>(c, steps, MPI_COMM_WORLD);
+    if (wendland)
+      bench<3, sph::WendlandC2<3>>(c, steps, skip, MPI_COMM_WORLD);
+    else
+      bench<3, sph::QuinticSpline<3>>(c, steps, skip, MPI_COMM_WORLD);
   }
   MPI_Finalize();
   return 0;

@@ -45,9 +45,9 @@ Fields read_last(const std::string& path) {
   const test::Snapshot s = test::ResultReader(path).last();
   Fields f;
   for (std::size_t i = 0; i < s.size(); ++i)
-    f.by_id[s.id[i]] = {s.position[3 * i],     s.position[3 * i + 1], s.position[3 * i + 2],
-                        s.velocity[3 * i],     s.velocity[3 * i + 1], s.velocity[3 * i + 2],
-                        s.density[i],          s.pressure[i]};
+    f.by_id[s.id[i]] = {s.position[3 * i], s.position[3 * i + 1], s.position[3 * i + 2],
+                        s.velocity[3 * i], s.velocity[3 * i + 1], s.velocity[3 * i + 2],
+                        s.density[i],      s.pressure[i]};
   return f;
 }
 
@@ -62,13 +62,17 @@ double max_relative_difference(const Fields& a, const Fields& b) {
       return 1e300;
     }
     for (int k = 0; k < 8; ++k) {
-      scale[static_cast<size_t>(k)] = std::max(scale[static_cast<size_t>(k)], std::abs(va[static_cast<size_t>(k)]));
-      diff[static_cast<size_t>(k)] = std::max(diff[static_cast<size_t>(k)], std::abs(va[static_cast<size_t>(k)] - it->second[static_cast<size_t>(k)]));
+      scale[static_cast<size_t>(k)] =
+          std::max(scale[static_cast<size_t>(k)], std::abs(va[static_cast<size_t>(k)]));
+      diff[static_cast<size_t>(k)] =
+          std::max(diff[static_cast<size_t>(k)],
+                   std::abs(va[static_cast<size_t>(k)] - it->second[static_cast<size_t>(k)]));
     }
   }
   double worst = 0;
   for (int k = 0; k < 8; ++k)
-    if (scale[static_cast<size_t>(k)] > 0) worst = std::max(worst, diff[static_cast<size_t>(k)] / scale[static_cast<size_t>(k)]);
+    if (scale[static_cast<size_t>(k)] > 0)
+      worst = std::max(worst, diff[static_cast<size_t>(k)] / scale[static_cast<size_t>(k)]);
   return worst;
 }
 
@@ -77,7 +81,8 @@ void check_rank_counts(const std::string& name, v1::Case c, std::int64_t steps) 
   c.mutable_output()->set_interval(0);  // snapshots at t = 0 and at the end only
   std::map<int, std::string> outs;
   for (int ranks : {1, 2, 4}) {
-    outs[ranks] = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_" + name + "_" + std::to_string(ranks);
+    outs[ranks] =
+        std::string(SPHD_BINARY_DIR) + "/test-output/mpi_" + name + "_" + std::to_string(ranks);
     const RunOutcome r = run_on(c, ranks, outs[ranks]);
     ASSERT_EQ(r.status, RunStatus::kCompleted) << name << " on " << ranks << " ranks";
   }
@@ -87,9 +92,12 @@ void check_rank_counts(const std::string& name, v1::Case c, std::int64_t steps) 
   const Fields one = read_last(outs[1] + "/result.h5");
   const double d2 = max_relative_difference(one, read_last(outs[2] + "/result.h5"));
   const double d4 = max_relative_difference(one, read_last(outs[4] + "/result.h5"));
-  const double rep = max_relative_difference(read_last(outs[2] + "/result.h5"), read_last(again + "/result.h5"));
-  std::printf("%s after %lld steps: max relative difference 1 vs 2 ranks %.3g, 1 vs 4 ranks %.3g, "
-              "2-rank repeat %.3g\n", name.c_str(), static_cast<long long>(steps), d2, d4, rep);
+  const double rep =
+      max_relative_difference(read_last(outs[2] + "/result.h5"), read_last(again + "/result.h5"));
+  std::printf(
+      "%s after %lld steps: max relative difference 1 vs 2 ranks %.3g, 1 vs 4 ranks %.3g, "
+      "2-rank repeat %.3g\n",
+      name.c_str(), static_cast<long long>(steps), d2, d4, rep);
   EXPECT_LE(d2, 1e-10);
   EXPECT_LE(d4, 1e-10);
   EXPECT_EQ(rep, 0.0);
@@ -143,7 +151,8 @@ TEST(RankConsistency, DamBreakRebalances) {
   double worst_late = 0;
   for (std::size_t k = 0; k < t.size(); ++k)
     if (t[k] > 1.5) worst_late = std::max(worst_late, imb[k]);
-  std::printf("Dam break on 4 ranks: largest rank / mean after t = 1.5: %.3f (final %.3f)\n", worst_late, imb.back());
+  std::printf("Dam break on 4 ranks: largest rank / mean after t = 1.5: %.3f (final %.3f)\n",
+              worst_late, imb.back());
   EXPECT_LE(worst_late, 1.10);
 }
 

@@ -78,7 +78,8 @@ class ResultReader {
     return buf;
   }
   bool exists(const std::string& path) const {
-    return H5Lexists(file_, "/snapshots", H5P_DEFAULT) > 0 && H5Lexists(file_, path.c_str(), H5P_DEFAULT) > 0;
+    return H5Lexists(file_, "/snapshots", H5P_DEFAULT) > 0 &&
+           H5Lexists(file_, path.c_str(), H5P_DEFAULT) > 0;
   }
   double attr_double(const std::string& obj, const char* name) const {
     hid_t o = H5Oopen(file_, obj.c_str(), H5P_DEFAULT);

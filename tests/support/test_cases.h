@@ -8,7 +8,9 @@
 
 namespace sph::test {
 
-inline std::string source_dir() { return SPHD_SOURCE_DIR; }
+inline std::string source_dir() {
+  return SPHD_SOURCE_DIR;
+}
 
 inline v1::Case load_case(const std::string& name) {
   return load_case_file(source_dir() + "/cases/" + name + ".textproto");
@@ -21,7 +23,8 @@ inline std::string output_dir(const std::string& name) {
   return dir;
 }
 
-inline RunOutcome run(const v1::Case& c, const std::string& out_dir, MPI_Comm comm = MPI_COMM_WORLD) {
+inline RunOutcome run(const v1::Case& c, const std::string& out_dir,
+                      MPI_Comm comm = MPI_COMM_WORLD) {
   RunOptions o;
   o.output_dir = out_dir;
   o.quiet = true;

@@ -23,13 +23,16 @@ std::vector<FieldError> errors_of(const std::string& extra, ValidationLimits lim
 }
 
 // True if some error has exactly this field and a message containing `what`.
-bool has_error(const std::vector<FieldError>& errs, const std::string& field, const std::string& what) {
+bool has_error(const std::vector<FieldError>& errs, const std::string& field,
+               const std::string& what) {
   for (const auto& e : errs)
     if (e.field == field && e.message.find(what) != std::string::npos) return true;
   return false;
 }
 
-std::string dump(const std::vector<FieldError>& errs) { return join_errors(errs); }
+std::string dump(const std::vector<FieldError>& errs) {
+  return join_errors(errs);
+}
 
 TEST(CaseValidation, BaseCaseIsValid) {
   const auto errs = errors_of("");
@@ -62,7 +65,8 @@ TEST(CaseValidation, NegativeDx) {
 }
 
 TEST(CaseValidation, MissingMaterialIsNamed) {
-  const auto errs = errors_of(R"(fluids { name: "g" material: "oil" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } })");
+  const auto errs = errors_of(
+      R"(fluids { name: "g" material: "oil" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } })");
   EXPECT_TRUE(has_error(errs, "fluids[1].material", "unknown material 'oil'")) << dump(errs);
 }
 
@@ -70,13 +74,17 @@ TEST(CaseValidation, WrongPhaseAndDuplicates) {
   auto errs = errors_of(R"(materials { name: "steel" phase: SOLID density: 7800 }
 materials { name: "water" density: 1 eos { sound_speed: 1 } }
 fluids { name: "g" material: "steel" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } })");
-  EXPECT_TRUE(has_error(errs, "materials[2].name", "duplicate material name 'water'")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "materials[2].name", "duplicate material name 'water'"))
+      << dump(errs);
   EXPECT_TRUE(has_error(errs, "fluids[1].material", "is SOLID, expected FLUID")) << dump(errs);
 }
 
 TEST(CaseValidation, EosNeedsExactlyOneScale) {
-  const auto errs = errors_of(R"(materials { name: "air" density: 1 eos { sound_speed: 3 reference_pressure: 4 } })");
-  EXPECT_TRUE(has_error(errs, "materials[1].eos", "exactly one of sound_speed and reference_pressure")) << dump(errs);
+  const auto errs = errors_of(
+      R"(materials { name: "air" density: 1 eos { sound_speed: 3 reference_pressure: 4 } })");
+  EXPECT_TRUE(
+      has_error(errs, "materials[1].eos", "exactly one of sound_speed and reference_pressure"))
+      << dump(errs);
 }
 
 TEST(CaseValidation, TwoDimensionalVectorsMustHaveZeroZ) {
@@ -85,13 +93,18 @@ TEST(CaseValidation, TwoDimensionalVectorsMustHaveZeroZ) {
 }
 
 TEST(CaseValidation, ShapeChecksNameNestedPaths) {
-  const auto errs = errors_of(R"(walls { shape { difference { base { box { lo { x: 0 y: 0 } hi { x: 1 y: -1 } } } subtract { ball { radius: -2 } } } } })");
-  EXPECT_TRUE(has_error(errs, "walls[0].shape.difference.base.box.hi.y", "must be greater than box.lo")) << dump(errs);
-  EXPECT_TRUE(has_error(errs, "walls[0].shape.difference.subtract[0].ball.radius", "must be > 0")) << dump(errs);
+  const auto errs = errors_of(
+      R"(walls { shape { difference { base { box { lo { x: 0 y: 0 } hi { x: 1 y: -1 } } } subtract { ball { radius: -2 } } } } })");
+  EXPECT_TRUE(
+      has_error(errs, "walls[0].shape.difference.base.box.hi.y", "must be greater than box.lo"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "walls[0].shape.difference.subtract[0].ball.radius", "must be > 0"))
+      << dump(errs);
 }
 
 TEST(CaseValidation, DimensionSpecificShapes) {
-  const auto errs = errors_of(R"(walls { shape { cylinder { axis { y: 1 } radius: 1 length: 1 } } })");
+  const auto errs =
+      errors_of(R"(walls { shape { cylinder { axis { y: 1 } radius: 1 length: 1 } } })");
   EXPECT_TRUE(has_error(errs, "walls[0].shape.cylinder", "only in 3D cases")) << dump(errs);
 }
 
@@ -116,15 +129,18 @@ bodies { name: "b" material: "s" motion_type: PRESCRIBED shape { ball { center {
   EXPECT_TRUE(has_error(errs, "bodies[0].material", "is FLUID, expected SOLID")) << dump(errs);
   EXPECT_TRUE(has_error(errs, "bodies[0].buoyancy_fluid", "is required")) << dump(errs);
   EXPECT_TRUE(has_error(errs, "bodies[1].name", "duplicate body name 'b'")) << dump(errs);
-  EXPECT_TRUE(has_error(errs, "bodies[1].motion", "a PRESCRIBED body needs a motion")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "bodies[1].motion", "a PRESCRIBED body needs a motion"))
+      << dump(errs);
   errs = errors_of(R"(contact { stiffness: -1 })");
   EXPECT_TRUE(has_error(errs, "contact.stiffness", "must be > 0")) << dump(errs);
   EXPECT_TRUE(has_error(errs, "contact", "no rigid bodies")) << dump(errs);
 }
 
 TEST(CaseValidation, TransportPressureWithoutTransportVelocity) {
-  const auto errs = errors_of(R"(materials { name: "air" density: 1 eos { sound_speed: 3 } transport_background_pressure: 2 })");
-  EXPECT_TRUE(has_error(errs, "materials[1].transport_background_pressure", "fluid_model.transport_velocity is not enabled"))
+  const auto errs = errors_of(
+      R"(materials { name: "air" density: 1 eos { sound_speed: 3 } transport_background_pressure: 2 })");
+  EXPECT_TRUE(has_error(errs, "materials[1].transport_background_pressure",
+                        "fluid_model.transport_velocity is not enabled"))
       << dump(errs);
 }
 
@@ -132,7 +148,7 @@ TEST(CaseValidation, SizeLimitNamesDx) {
   auto c = parse_case_text(kBase);
   const CaseEstimate e = estimate_case(c);
   EXPECT_NEAR(e.fluid_particles, 100, 0.5);  // 10 x 10 lattice points in the 1 x 1 box
-  c.set_dx(0.001);                            // 1e6 particles
+  c.set_dx(0.001);                           // 1e6 particles
   const auto errs = validate_case(c, ValidationLimits{1e4});
   EXPECT_TRUE(has_error(errs, "dx", "case too large")) << dump(errs);
 }
@@ -146,16 +162,22 @@ TEST(CaseValidation, EmptyPlacementIsAnError) {
 }
 
 TEST(CaseValidation, TimeFunctionTables) {
-  const auto errs = errors_of(R"(walls { shape { box { lo { x: 0 y: 0 } hi { x: 2 y: 0.2 } } } motion { velocity_x { piecewise_linear { times: 0 times: 0 values: 1 } } } })");
-  EXPECT_TRUE(has_error(errs, "walls[0].motion.velocity_x.piecewise_linear.values", "as many values as times")) << dump(errs);
-  EXPECT_TRUE(has_error(errs, "walls[0].motion.velocity_x.piecewise_linear.times[1]", "strictly increasing")) << dump(errs);
+  const auto errs = errors_of(
+      R"(walls { shape { box { lo { x: 0 y: 0 } hi { x: 2 y: 0.2 } } } motion { velocity_x { piecewise_linear { times: 0 times: 0 values: 1 } } } })");
+  EXPECT_TRUE(has_error(errs, "walls[0].motion.velocity_x.piecewise_linear.values",
+                        "as many values as times"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "walls[0].motion.velocity_x.piecewise_linear.times[1]",
+                        "strictly increasing"))
+      << dump(errs);
 }
 
 TEST(CaseValidation, EveryShippedCaseIsValid) {
-  for (const char* name : {"poiseuille_2d", "couette_2d", "hydrostatic_tank_2d", "hydrostatic_wedge_2d",
-                           "hydrostatic_cylinder_3d", "free_fall_tank_2d", "dambreak_2d", "dambreak_martin_moyce_2d",
-                           "colagrossi_dambreak_2d", "rotating_rippled_cylinder_2d", "cylinder_lattice_2d",
-                           "taylor_green_2d", "falling_disk_2d"}) {
+  for (const char* name :
+       {"poiseuille_2d", "couette_2d", "hydrostatic_tank_2d", "hydrostatic_wedge_2d",
+        "hydrostatic_cylinder_3d", "free_fall_tank_2d", "dambreak_2d", "dambreak_martin_moyce_2d",
+        "colagrossi_dambreak_2d", "rotating_rippled_cylinder_2d", "cylinder_lattice_2d",
+        "taylor_green_2d", "falling_disk_2d"}) {
     const auto c = load_case_file(std::string(SPHD_SOURCE_DIR) + "/cases/" + name + ".textproto");
     const auto errs = validate_case(c);
     EXPECT_TRUE(errs.empty()) << name << ": " << dump(errs);

@@ -36,7 +36,8 @@ TEST(EquationOfState, RoundTrip) {
     for (double gamma : {7.0, 3.0}) {  // 3: the general pow() path
       const FluidConstants f = make(tait, 15, -3.0, gamma);
       for (double rho = 950; rho < 1060; rho += 7.3) {
-        EXPECT_NEAR(f.density(f.pressure(rho)), rho, 1e-9 * rho) << "tait " << tait << " gamma " << gamma;
+        EXPECT_NEAR(f.density(f.pressure(rho)), rho, 1e-9 * rho)
+            << "tait " << tait << " gamma " << gamma;
       }
     }
   }

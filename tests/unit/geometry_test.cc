@@ -35,8 +35,11 @@ TEST(Geometry, BoxFillIsExact) {
 
 TEST(Geometry, ShellHasSquareCornersAndGivenThickness) {
   // A 3-layer shell around a 1 x 1 box: (10 + 6)^2 - 10^2 lattice points.
-  EXPECT_EQ(count("shell { inner { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } }", 2, 0.1), 16 * 16 - 100);
-  EXPECT_EQ(count("shell { inner { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } thickness: 0.1 }", 2, 0.1), 12 * 12 - 100);
+  EXPECT_EQ(count("shell { inner { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } }", 2, 0.1),
+            16 * 16 - 100);
+  EXPECT_EQ(
+      count("shell { inner { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } thickness: 0.1 }", 2, 0.1),
+      12 * 12 - 100);
 }
 
 TEST(Geometry, DiskAreaConverges) {
@@ -48,8 +51,11 @@ TEST(Geometry, DiskAreaConverges) {
 
 TEST(Geometry, CylinderVolume) {
   const double dx = 0.02;
-  const double n = count("cylinder { base { x: 0 y: 0 z: 0 } axis { x: 1 y: 1 z: 0 } radius: 0.2 length: 0.6 }", 3, dx);
-  EXPECT_NEAR(n * dx * dx * dx, std::numbers::pi * 0.04 * 0.6, 0.03 * std::numbers::pi * 0.04 * 0.6);
+  const double n =
+      count("cylinder { base { x: 0 y: 0 z: 0 } axis { x: 1 y: 1 z: 0 } radius: 0.2 length: 0.6 }",
+            3, dx);
+  EXPECT_NEAR(n * dx * dx * dx, std::numbers::pi * 0.04 * 0.6,
+              0.03 * std::numbers::pi * 0.04 * 0.6);
 }
 
 TEST(Geometry, PolygonAndBooleans) {
@@ -57,13 +63,16 @@ TEST(Geometry, PolygonAndBooleans) {
   const double dx = 0.005;
   const double n = count(R"(difference {
       base { polygon { vertices { x: 0 y: 0 } vertices { x: 1 y: 0 } vertices { x: 0 y: 1 } } }
-      subtract { ball { center { x: 0.3 y: 0.3 } radius: 0.1 } } })", 2, dx);
+      subtract { ball { center { x: 0.3 y: 0.3 } radius: 0.1 } } })",
+                         2, dx);
   EXPECT_NEAR(n * dx * dx, 0.5 - std::numbers::pi * 0.01, 0.005);
   const double u = count(R"(union { shapes { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } }
-                                     shapes { box { lo { x: 0.5 y: 0 } hi { x: 1.5 y: 1 } } } })", 2, 0.1);
+                                     shapes { box { lo { x: 0.5 y: 0 } hi { x: 1.5 y: 1 } } } })",
+                         2, 0.1);
   EXPECT_EQ(u, 150);
   const double i = count(R"(intersection { shapes { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } }
-                                     shapes { box { lo { x: 0.5 y: 0 } hi { x: 1.5 y: 1 } } } })", 2, 0.1);
+                                     shapes { box { lo { x: 0.5 y: 0 } hi { x: 1.5 y: 1 } } } })",
+                         2, 0.1);
   EXPECT_EQ(i, 50);
 }
 
@@ -81,7 +90,9 @@ TEST(Geometry, PointSetGivesItsPoints) {
 TEST(TimeFunction, IntegralsAndDerivativesAreExact) {
   v1::TimeFunction f;
   google::protobuf::TextFormat::ParseFromString(
-      "sine { offset: 0.5 amplitude: 2 angular_frequency: 3 phase: 0.2 } start_time: 0.5 end_time: 2", &f);
+      "sine { offset: 0.5 amplitude: 2 angular_frequency: 3 phase: 0.2 } start_time: 0.5 end_time: "
+      "2",
+      &f);
   const TimeFunction tf(f);
   // Numerical integral (midpoint rule) and derivative.
   double acc = 0;
@@ -103,7 +114,8 @@ TEST(TimeFunction, IntegralsAndDerivativesAreExact) {
   EXPECT_DOUBLE_EQ(tg.derivative(2.0), -2.0);
 
   v1::TimeFunction k;
-  google::protobuf::TextFormat::ParseFromString("piecewise_constant { times: 0 times: 1 values: 3 values: 5 }", &k);
+  google::protobuf::TextFormat::ParseFromString(
+      "piecewise_constant { times: 0 times: 1 values: 3 values: 5 }", &k);
   const TimeFunction tk(k);
   EXPECT_DOUBLE_EQ(tk.integral(2.0), 3.0 + 5.0);
 }

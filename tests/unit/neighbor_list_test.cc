@@ -55,9 +55,15 @@ void check_against_brute_force(const std::array<bool, D>& periodic, int seed) {
   }
 }
 
-TEST(NeighborList, MatchesBruteForce2D) { check_against_brute_force<2>({false, false}, 1); }
-TEST(NeighborList, MatchesBruteForce2DPeriodic) { check_against_brute_force<2>({true, true}, 2); }
-TEST(NeighborList, MatchesBruteForce3DPeriodicX) { check_against_brute_force<3>({true, false, false}, 3); }
+TEST(NeighborList, MatchesBruteForce2D) {
+  check_against_brute_force<2>({false, false}, 1);
+}
+TEST(NeighborList, MatchesBruteForce2DPeriodic) {
+  check_against_brute_force<2>({true, true}, 2);
+}
+TEST(NeighborList, MatchesBruteForce3DPeriodicX) {
+  check_against_brute_force<3>({true, false, false}, 3);
+}
 
 TEST(NeighborList, OrderIsCanonical) {
   // The same particles stored in two different orders give the same neighbour id sequences.

@@ -49,7 +49,8 @@ v1::Case body_case(int dim, double dx, const std::string& shape) {
                          R"( domain { lo { x: -1 y: -1 z: )" + (dim == 3 ? "-1" : "0") +
                          R"( } hi { x: 1 y: 1 z: )" + (dim == 3 ? "1" : "0") + R"( } }
     materials { name: "steel" phase: SOLID density: 1000 }
-    bodies { name: "b" material: "steel" shape { )" + shape + R"( } }
+    bodies { name: "b" material: "steel" shape { )" +
+                         shape + R"( } }
     time { end_time: 1 fixed_dt: 1e-3 })");
 }
 
@@ -67,18 +68,23 @@ TEST(RigidBody, DiskMassAndInertiaConverge) {
   for (const Level& l : {Level{12.5, 0.5, 0.5, 0.025, 0.04}, Level{25, 0.5, 0.5, 0.015, 0.03},
                          Level{50, 0.3, 0.17, 0.005, 0.01}}) {
     const double dx = D / l.ratio;
-    auto c = body_case(2, dx, "ball { center { x: " + std::to_string(l.offset_x * dx) + " y: " +
-                                  std::to_string(l.offset_y * dx) + " } radius: " + std::to_string(D / 2) + " }");
+    auto c = body_case(2, dx,
+                       "ball { center { x: " + std::to_string(l.offset_x * dx) +
+                           " y: " + std::to_string(l.offset_y * dx) +
+                           " } radius: " + std::to_string(D / 2) + " }");
     c.mutable_domain()->mutable_lo()->set_x(-0.01);
     c.mutable_domain()->mutable_lo()->set_y(-0.01);
     c.mutable_domain()->mutable_hi()->set_x(0.01);
     c.mutable_domain()->mutable_hi()->set_y(0.01);
     ParticleStore<2> s;
     auto b = bodies_of<2>(c, s);
-    const double em = b->bodies()[0].mass / m_exact - 1, ei = b->bodies()[0].inertia_body(0, 0) / I_exact - 1;
-    std::printf("disk D/dx = %4.1f: %4lld particles, mass error %+.2f%%, inertia error %+.2f%% "
-                "(bands %.1f%%, %.1f%%)\n", l.ratio, static_cast<long long>(b->bodies()[0].particles), 100 * em,
-                100 * ei, 100 * l.mass_band, 100 * l.inertia_band);
+    const double em = b->bodies()[0].mass / m_exact - 1,
+                 ei = b->bodies()[0].inertia_body(0, 0) / I_exact - 1;
+    std::printf(
+        "disk D/dx = %4.1f: %4lld particles, mass error %+.2f%%, inertia error %+.2f%% "
+        "(bands %.1f%%, %.1f%%)\n",
+        l.ratio, static_cast<long long>(b->bodies()[0].particles), 100 * em, 100 * ei,
+        100 * l.mass_band, 100 * l.inertia_band);
     EXPECT_LT(std::abs(em), l.mass_band);
     EXPECT_LT(std::abs(ei), l.inertia_band);
   }
@@ -94,9 +100,12 @@ TEST(RigidBody, SphereMassAndInertiaConverge) {
     auto b = bodies_of<3>(c, s);
     const auto& I = b->bodies()[0].inertia_body;
     const double em = b->bodies()[0].mass / m_exact - 1, ei = I.trace() / 3 / I_exact - 1;
-    const double off = (I - Eigen::Matrix3d(I.diagonal().asDiagonal())).cwiseAbs().maxCoeff() / I_exact;
-    std::printf("sphere D/dx = %4.1f: %6lld particles, mass error %+.2f%%, inertia error %+.2f%%, "
-                "off-diagonal %.1e\n", ratio, static_cast<long long>(b->bodies()[0].particles), 100 * em, 100 * ei, off);
+    const double off =
+        (I - Eigen::Matrix3d(I.diagonal().asDiagonal())).cwiseAbs().maxCoeff() / I_exact;
+    std::printf(
+        "sphere D/dx = %4.1f: %6lld particles, mass error %+.2f%%, inertia error %+.2f%%, "
+        "off-diagonal %.1e\n",
+        ratio, static_cast<long long>(b->bodies()[0].particles), 100 * em, 100 * ei, off);
     EXPECT_LT(std::abs(em), ratio < 20 ? 0.02 : 0.01);
     EXPECT_LT(std::abs(ei), ratio < 20 ? 0.03 : 0.015);
     EXPECT_LT(off, 0.01);
@@ -105,7 +114,8 @@ TEST(RigidBody, SphereMassAndInertiaConverge) {
 
 TEST(RigidBody, TorqueFreeRotationConservesMomentumAndEnergy) {
   // An asymmetric box spun about a non-principal axis precesses; L and E are invariants.
-  auto c = body_case(3, 0.05, "box { lo { x: -0.4 y: -0.25 z: -0.1 } hi { x: 0.4 y: 0.25 z: 0.1 } }");
+  auto c =
+      body_case(3, 0.05, "box { lo { x: -0.4 y: -0.25 z: -0.1 } hi { x: 0.4 y: 0.25 z: 0.1 } }");
   ParticleStore<3> s;
   auto bodies = bodies_of<3>(c, s);
   RigidBody<3>& b = bodies->bodies()[0];
@@ -122,7 +132,8 @@ TEST(RigidBody, TorqueFreeRotationConservesMomentumAndEnergy) {
     worst_e = std::max(worst_e, std::abs(b.kinetic_energy() / E0 - 1));
   }
   const double dl = (b.angular_momentum - L0).norm() / L0.norm();
-  std::printf("torque-free box, 20000 steps: |L - L0|/|L0| = %.2e, max |E/E0 - 1| = %.2e\n", dl, worst_e);
+  std::printf("torque-free box, 20000 steps: |L - L0|/|L0| = %.2e, max |E/E0 - 1| = %.2e\n", dl,
+              worst_e);
   EXPECT_LT(dl, 1e-12);
   EXPECT_LT(worst_e, 1e-5);
   EXPECT_GT((b.omega - Eigen::Vector3d(1.0, 0.3, 2.0)).norm(), 0.1);  // it did precess
@@ -170,8 +181,10 @@ TEST(RigidBody, HeadOnCollisionConservesMomentumAndLosesEnergyByTheDamping) {
   const double dx = 0.01, k = 1e4, d = 2.0, rho = 1000, m = rho * dx * dx;
   const double e_ref = reference_restitution(k, d, m / 2, 0.2);
   const double zeta = d / (2 * std::sqrt(k * m / 2));
-  std::printf("head-on collision: restitution from the force law %.5f (linear spring-dashpot without "
-              "the cut-off: %.5f)\n", e_ref, std::exp(-kPi * zeta / std::sqrt(1 - zeta * zeta)));
+  std::printf(
+      "head-on collision: restitution from the force law %.5f (linear spring-dashpot without "
+      "the cut-off: %.5f)\n",
+      e_ref, std::exp(-kPi * zeta / std::sqrt(1 - zeta * zeta)));
   double previous_error = 1;
   // The paper's contact time step (factor 1) and a 4x smaller one. The dashpot force uses the
   // mid-substep velocity, so the dissipation converges at first order (not second).
@@ -195,8 +208,10 @@ TEST(RigidBody, HeadOnCollisionConservesMomentumAndLosesEnergyByTheDamping) {
     const double p_end = m * (vel[last + 0] + vel[last + 2]);
     const double e = (vel[last + 2] - vel[last + 0]) / 0.2;  // separation / approach speed
     const double err = std::abs(e / e_ref - 1);
-    std::printf("  contact step factor %.2f: momentum after %.1e (before 0), restitution %.5f, error %.2f%%\n",
-                factor, p_end, e, 100 * err);
+    std::printf(
+        "  contact step factor %.2f: momentum after %.1e (before 0), restitution %.5f, error "
+        "%.2f%%\n",
+        factor, p_end, e, 100 * err);
     EXPECT_LT(std::abs(p_end), 1e-15);
     EXPECT_LT(err, factor == 1.0 ? 0.03 : 0.005);
     EXPECT_LT(err, previous_error / 3);  // first order: about 4x smaller for a 4x smaller step

@@ -32,7 +32,8 @@ struct Fixture {
     }
   }
   std::string scan(bool periodic_x = false) {
-    return scan_particles<2>(s, fluids, mats, GuardSettings{}, Vec<2>(0, 0), Vec<2>(1, 1), {periodic_x, false}, 42, 1.5)
+    return scan_particles<2>(s, fluids, mats, GuardSettings{}, Vec<2>(0, 0), Vec<2>(1, 1),
+                             {periodic_x, false}, 42, 1.5)
         .violation;
   }
 };

@@ -54,8 +54,11 @@ TEST(ChannelFlow, PoiseuilleMatchesAnalyticAtT10) {
   ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
   const test::Snapshot s = test::ResultReader(out + "/result.h5").last();
   ASSERT_NEAR(s.time, 10.0, 1e-12);
-  const double err = mean_error(s, [](double y, double t) { return poiseuille(y, t, 0.1, 0.01, 1.0); }, 1.25);
-  std::printf("Poiseuille, 30 particles across, t = 10: mean error %.3f%% of u_max (Adami 2012: 0.16%%)\n", 100 * err);
+  const double err = mean_error(
+      s, [](double y, double t) { return poiseuille(y, t, 0.1, 0.01, 1.0); }, 1.25);
+  std::printf(
+      "Poiseuille, 30 particles across, t = 10: mean error %.3f%% of u_max (Adami 2012: 0.16%%)\n",
+      100 * err);
   EXPECT_LT(err, 0.005);
 }
 
@@ -65,8 +68,11 @@ TEST(ChannelFlow, CouetteMatchesAnalyticAtT10) {
   const RunOutcome r = test::run(c, out);
   ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
   const test::Snapshot s = test::ResultReader(out + "/result.h5").last();
-  const double err = mean_error(s, [](double y, double t) { return couette(y, t, 1.25, 0.01, 1.0); }, 1.25);
-  std::printf("Couette, 30 particles across, t = 10: mean error %.3f%% of v_wall (Adami 2012: 0.16%%)\n", 100 * err);
+  const double err = mean_error(
+      s, [](double y, double t) { return couette(y, t, 1.25, 0.01, 1.0); }, 1.25);
+  std::printf(
+      "Couette, 30 particles across, t = 10: mean error %.3f%% of v_wall (Adami 2012: 0.16%%)\n",
+      100 * err);
   EXPECT_LT(err, 0.005);
 }
 

@@ -14,7 +14,7 @@ namespace {
 
 TEST(FreeSurface, DamBreakFrontAgainstExperimentAndMPS) {
   auto c = test::load_case("dambreak_martin_moyce_2d");
-  c.set_dx(0.04);  // 1250 fluid particles
+  c.set_dx(0.04);                       // 1250 fluid particles
   c.mutable_time()->set_end_time(2.1);  // T = t sqrt(2 g / a) up to 3
   const std::string out = test::output_dir("dambreak_front");
   const RunOutcome r = test::run(c, out);
@@ -28,7 +28,8 @@ TEST(FreeSurface, DamBreakFrontAgainstExperimentAndMPS) {
     front.push_back(fmax[2 * k]);
   }
   auto deviation = [&](const char* file, double& mean, double& worst) {
-    const auto ref = test::read_reference(std::string(SPHD_SOURCE_DIR) + "/tests/validation/data/" + file);
+    const auto ref =
+        test::read_reference(std::string(SPHD_SOURCE_DIR) + "/tests/validation/data/" + file);
     mean = worst = 0;
     int n = 0;
     for (const auto& row : ref.rows) {
@@ -44,9 +45,11 @@ TEST(FreeSurface, DamBreakFrontAgainstExperimentAndMPS) {
   deviation("dambreak_koshizuka_oka1996_front_MPS.csv", mps_mean, mps_max);
   deviation("dambreak_koshizuka_oka1996_front_exp.csv", exp_mean, exp_max);
   deviation("dambreak_martin_moyce1952_front_a2p25in_n2eq2.csv", mm_mean, mm_max);
-  std::printf("Dam-break front, dx = a/25, T <= 3: vs MPS mean %.1f%% max %.1f%%; vs Koshizuka-Oka experiment "
-              "mean %.1f%% max %.1f%%; vs Martin-Moyce mean %.1f%% max %.1f%%\n",
-              100 * mps_mean, 100 * mps_max, 100 * exp_mean, 100 * exp_max, 100 * mm_mean, 100 * mm_max);
+  std::printf(
+      "Dam-break front, dx = a/25, T <= 3: vs MPS mean %.1f%% max %.1f%%; vs Koshizuka-Oka "
+      "experiment "
+      "mean %.1f%% max %.1f%%; vs Martin-Moyce mean %.1f%% max %.1f%%\n",
+      100 * mps_mean, 100 * mps_max, 100 * exp_mean, 100 * exp_max, 100 * mm_mean, 100 * mm_max);
   // Inviscid WCSPH runs ahead of the experiments by 10-15% (Adami 2012 Fig. 13a) and agrees
   // with other particle methods.
   EXPECT_LT(mps_mean, 0.06);
@@ -78,8 +81,8 @@ TEST(FreeSurface, TaylorGreenDecayRate) {
   }
   const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
   const double exact = -8 * std::numbers::pi * std::numbers::pi / 100;
-  std::printf("Taylor-Green Re = 100, dx = 0.04: decay rate %.4f vs exact %.4f (%.2f%%)\n", slope, exact,
-              100 * (slope / exact - 1));
+  std::printf("Taylor-Green Re = 100, dx = 0.04: decay rate %.4f vs exact %.4f (%.2f%%)\n", slope,
+              exact, 100 * (slope / exact - 1));
   EXPECT_NEAR(slope / exact, 1.0, 0.05);
 }
 

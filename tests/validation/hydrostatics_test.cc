@@ -40,8 +40,11 @@ TEST(Hydrostatics, TankBottomPressureAndRest) {
   }
   p /= n;
   const double expected = g * (H + 0.5 * dx);
-  std::printf("Hydrostatic tank dx = %.2f, t = 8: bottom pressure %.4f vs rho g (H + dx/2) = %.4f (%.2f%%), "
-              "max |u| = %.2f%% of sqrt(gH)\n", dx, p, expected, 100 * (p / expected - 1), 100 * vmax / std::sqrt(g * H));
+  std::printf(
+      "Hydrostatic tank dx = %.2f, t = 8: bottom pressure %.4f vs rho g (H + dx/2) = %.4f "
+      "(%.2f%%), "
+      "max |u| = %.2f%% of sqrt(gH)\n",
+      dx, p, expected, 100 * (p / expected - 1), 100 * vmax / std::sqrt(g * H));
   EXPECT_NEAR(p / expected, 1.0, 0.02);
   EXPECT_LT(vmax / std::sqrt(g * H), 0.01);
 }
@@ -59,7 +62,9 @@ TEST(Hydrostatics, FreeFallingTankStaysAtZeroPressure) {
       if (s.kind[i] == 0) worst = std::max(worst, std::abs(s.pressure[i]));
   }
   const double rho_g_H = 0.9;
-  std::printf("Free-falling tank to t = 1: max |p| = %.3f%% of rho g H (Adami 2012 Fig. 12b: zero)\n", 100 * worst / rho_g_H);
+  std::printf(
+      "Free-falling tank to t = 1: max |p| = %.3f%% of rho g H (Adami 2012 Fig. 12b: zero)\n",
+      100 * worst / rho_g_H);
   EXPECT_LT(worst / rho_g_H, 0.01);
 }
 
@@ -86,7 +91,8 @@ TEST(Hydrostatics, Cylinder3DAxisProfile) {
     if (z < 0.2 || z > H - 0.2) continue;
     worst = std::max(worst, std::abs(p[last + k] - (H - z)) / H);
   }
-  std::printf("3D cylinder dx = 0.08, t = 3: axis pressure within %.2f%% of rho g (H - z)\n", 100 * worst);
+  std::printf("3D cylinder dx = 0.08, t = 3: axis pressure within %.2f%% of rho g (H - z)\n",
+              100 * worst);
   EXPECT_LT(worst, 0.03);
 }
 
