@@ -132,14 +132,17 @@ class Validator {
       } else if (m.has_eos()) {
         error(cat(f, "eos"), "a SOLID material has no equation of state");
       }
-      for (auto [has, name] : {std::pair{m.has_heat_capacity(), "heat_capacity"},
-                               std::pair{m.has_thermal_conductivity(), "thermal_conductivity"},
-                               std::pair{m.has_diffusivity(), "diffusivity"}}) {
-        if (has)
-          error(cat(f, name), "not implemented yet: heat conduction and concentration diffusion");
-      }
-      if (m.fixed_concentration())
-        error(cat(f, "fixed_concentration"), "not implemented yet: concentration diffusion");
+      // Thermal and diffusion properties: checked against the effects the case enables.
+      if (m.has_heat_capacity()) positive(m.heat_capacity(), cat(f, "heat_capacity"));
+      if (m.has_thermal_conductivity())
+        non_negative(m.thermal_conductivity(), cat(f, "thermal_conductivity"));
+      if (m.has_diffusivity()) non_negative(m.diffusivity(), cat(f, "diffusivity"));
+      if (!c_.has_thermal() && (m.has_heat_capacity() || m.has_thermal_conductivity()))
+        error(cat(f, m.has_heat_capacity() ? "heat_capacity" : "thermal_conductivity"),
+              "set, but heat conduction is not enabled (add a `thermal { }` block)");
+      if (!c_.has_diffusion() && (m.has_diffusivity() || m.fixed_concentration()))
+        error(cat(f, m.has_diffusivity() ? "diffusivity" : "fixed_concentration"),
+              "set, but concentration diffusion is not enabled (add a `diffusion { }` block)");
     }
   }
 
@@ -314,10 +317,33 @@ class Validator {
       if (!finite(r.hydrostatic_surface())) error(cat(f, "hydrostatic_surface"), "must be finite");
       if (!c_.has_gravity()) error(cat(f, "hydrostatic_surface"), "needs gravity");
     }
-    if (r.has_initial_temperature())
-      error(cat(f, "initial_temperature"), "not implemented yet: heat conduction");
-    if (r.has_initial_concentration())
-      error(cat(f, "initial_concentration"), "not implemented yet: concentration diffusion");
+    if (r.has_initial_temperature() && !c_.has_thermal())
+      error(cat(f, "initial_temperature"),
+            "set, but heat conduction is not enabled (add a `thermal { }` block)");
+    if (r.has_initial_concentration() && !c_.has_diffusion())
+      error(cat(f, "initial_concentration"),
+            "set, but concentration diffusion is not enabled (add a `diffusion { }` block)");
+    transport_properties(r.material(), f + ".material");
+  }
+
+  // Every material that conducts or diffuses needs its coefficients once the effect is on.
+  void transport_properties(const std::string& name, const std::string& field) {
+    const int k = material_position(name);
+    if (k < 0) return;
+    const auto& m = c_.materials(k);
+    const std::string mf = idx("materials", k);
+    if (c_.has_thermal() && (!m.has_heat_capacity() || !m.has_thermal_conductivity()) &&
+        reported_.insert(mf + "t").second)
+      error(cat(mf, m.has_heat_capacity() ? "thermal_conductivity" : "heat_capacity"),
+            "required: heat conduction is enabled and material '" + name + "' is used by " + field);
+    if (c_.has_diffusion() && !m.has_diffusivity() && reported_.insert(mf + "d").second)
+      error(cat(mf, "diffusivity"), "required: concentration diffusion is enabled and material '" +
+                                        name + "' is used by " + field);
+  }
+  int material_position(const std::string& name) const {
+    for (int k = 0; k < c_.materials_size(); ++k)
+      if (c_.materials(k).name() == name) return k;
+    return -1;
   }
 
   void wall(const v1::Wall& w, const std::string& f) {
@@ -327,11 +353,20 @@ class Validator {
       shape(w.shape(), cat(f, "shape"), true);
     material_ref(w.material(), v1::SOLID, cat(f, "material"), false);
     if (w.has_motion()) motion(w.motion(), cat(f, "motion"));
-    if (w.has_temperature())
-      error(cat(f, "temperature"),
-            "not implemented yet: heat conduction (wall temperature schedules)");
-    if (w.has_concentration())
-      error(cat(f, "concentration"), "not implemented yet: concentration diffusion");
+    if (w.has_temperature()) {
+      if (!c_.has_thermal())
+        error(cat(f, "temperature"),
+              "set, but heat conduction is not enabled (add a `thermal { }` block)");
+      time_function(w.temperature().value(), cat(f, "temperature.value"));
+    }
+    if (w.has_concentration()) {
+      if (!c_.has_diffusion())
+        error(cat(f, "concentration"),
+              "set, but concentration diffusion is not enabled (add a `diffusion { }` block)");
+      time_function(w.concentration().value(), cat(f, "concentration.value"));
+    }
+    if (!w.material().empty() && (w.has_temperature() || w.has_concentration()))
+      transport_properties(w.material(), f + ".material");
   }
 
   void body(const v1::RigidBody& b, const std::string& f) {
@@ -364,10 +399,13 @@ class Validator {
     } else if (!b.buoyancy_fluid().empty()) {
       error(cat(f, "buoyancy_fluid"), "only used with body_force: BUOYANCY_REDUCED");
     }
-    if (b.has_initial_temperature())
-      error(cat(f, "initial_temperature"), "not implemented yet: heat conduction");
-    if (b.has_initial_concentration())
-      error(cat(f, "initial_concentration"), "not implemented yet: concentration diffusion");
+    if (b.has_initial_temperature() && !c_.has_thermal())
+      error(cat(f, "initial_temperature"),
+            "set, but heat conduction is not enabled (add a `thermal { }` block)");
+    if (b.has_initial_concentration() && !c_.has_diffusion())
+      error(cat(f, "initial_concentration"),
+            "set, but concentration diffusion is not enabled (add a `diffusion { }` block)");
+    transport_properties(b.material(), f + ".material");
   }
 
   void contact() {
@@ -384,8 +422,12 @@ class Validator {
     if (c_.has_contact()) contact();
     for (int i = 0; i < c_.phase_transitions_size(); ++i)
       error(idx("phase_transitions", i), "not implemented yet: phase transitions");
-    if (c_.has_thermal()) error("thermal", "not implemented yet: heat conduction");
-    if (c_.has_diffusion()) error("diffusion", "not implemented yet: concentration diffusion");
+    if (c_.has_thermal()) {
+      if (!finite(c_.thermal().initial_temperature()))
+        error("thermal.initial_temperature", "must be finite");
+      if (!finite(c_.thermal().volumetric_heat_source()))
+        error("thermal.volumetric_heat_source", "must be finite");
+    }
     for (int i = 0; i < c_.open_boundaries_size(); ++i)
       error(idx("open_boundaries", i), "not implemented yet: inflow/outflow boundaries");
     if (c_.has_reference()) error("reference", "not implemented yet: convergence-study references");
@@ -456,6 +498,7 @@ class Validator {
   std::set<std::string> names_;
   std::map<std::string, v1::MaterialPhase> phase_;
   std::set<std::string> body_names_;
+  std::set<std::string> reported_;
   bool dim_ok_ = true;
 };
 

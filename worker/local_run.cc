@@ -115,6 +115,17 @@ int run_local(int argc, char** argv) {
                 static_cast<long long>(r.steps), r.time, r.wall_seconds,
                 r.message.empty() ? "" : ": ", r.message.c_str());
     for (const auto& f : r.files) std::printf("  wrote %s\n", f.c_str());
+    double total = 0;
+    for (const auto& [unit, sec] : r.unit_seconds) total += sec;
+    if (total > 0) {
+      std::printf("  time by unit (rank 0):");
+      for (const auto& [unit, sec] : r.unit_seconds)
+        std::printf(" %s %.1f%%", unit.c_str(), 100 * sec / total);
+      std::printf("\n  storage by unit:");
+      for (const auto& [unit, b] : r.unit_bytes)
+        std::printf(" %s %.1f MiB", unit.c_str(), b / 1048576.0);
+      std::printf("\n");
+    }
     std::fflush(stdout);
   }
   switch (r.status) {

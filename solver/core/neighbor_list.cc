@@ -8,7 +8,8 @@ namespace sph {
 
 template <int D>
 void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
-                            const CellBox<D>& box, double rc, const ContactQuery* contact) {
+                            const CellBox<D>& box, double rc, const ContactQuery* contact,
+                            bool rigid_all) {
   box_ = box;
   std::size_t ncell = 1;
   for (int a = 0; a < D; ++a) {
@@ -75,6 +76,7 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
   const double cr2 = contact ? contact->range * contact->range : 0.0;
   const std::size_t owned = s.owned();
   start_.resize(owned + 1);
+  fluid_end_.resize(owned);
   nbr_.clear();
   start_[0] = 0;
   contact_start_.assign(owned + 1, 0);
@@ -83,17 +85,20 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
   for (std::size_t i = 0; i < owned; ++i) {
     const long long ci = cell_of_[i];
     const bool fluid = kind[i] == Kind::kFluid;
-    const bool contacts = contact && kind[i] == Kind::kRigid;
-    if (!fluid && !contacts) {
+    const bool rigid = kind[i] == Kind::kRigid;
+    const bool contacts = contact && rigid;
+    const bool all = fluid || (rigid && rigid_all);
+    if (!fluid && !contacts && !all) {
       bool any = false;
       for (int k = 0; k < kStencil && !any; ++k)
         any = cell_fluid_[static_cast<std::size_t>(ci + offs[k])] > 0;
       if (!any) {
-        start_[i + 1] = static_cast<std::uint32_t>(nbr_.size());
+        start_[i + 1] = fluid_end_[i] = static_cast<std::uint32_t>(nbr_.size());
         contact_start_[i + 1] = static_cast<std::uint32_t>(contact_nbr_.size());
         continue;
       }
     }
+    others_.clear();
     const Vec<D> xi = x[i];
     for (int k = 0; k < kStencil; ++k) {
       const std::size_t c = static_cast<std::size_t>(ci + offs[k]);
@@ -103,14 +108,20 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
         const double r2 = (xi - x[j]).squaredNorm();
         if (fluid || kind[j] == Kind::kFluid) {
           if (r2 < rc2) nbr_.push_back(j);
-        } else if (contacts && r2 < cr2 &&
-                   ((kind[j] == Kind::kRigid && contact->body[j] != contact->body[i]) ||
-                    (kind[j] == Kind::kWall && contact->walls))) {
+        } else if (all && r2 < rc2) {
+          others_.push_back(j);
+        }
+        if (contacts && kind[j] != Kind::kFluid && r2 < cr2 &&
+            ((kind[j] == Kind::kRigid && contact->body[j] != contact->body[i]) ||
+             (kind[j] == Kind::kWall && contact->walls))) {
           contact_nbr_.push_back(j);
           min_contact_ = std::min(min_contact_, std::sqrt(r2));
         }
       }
     }
+    // Non-fluid particles: fluid neighbours first (the wall condition stops there).
+    fluid_end_[i] = static_cast<std::uint32_t>(nbr_.size());
+    nbr_.insert(nbr_.end(), others_.begin(), others_.end());
     start_[i + 1] = static_cast<std::uint32_t>(nbr_.size());
     contact_start_[i + 1] = static_cast<std::uint32_t>(contact_nbr_.size());
   }

@@ -26,13 +26,16 @@ class NeighborList {
  public:
   // Bins all particles of `s` (owned and ghosts) into the cells of `box` (this rank's cells
   // plus the ghost layer) and builds the neighbour lists of the owned particles. Fluid
-  // particles get all neighbours within rc; wall and rigid particles only their fluid
-  // neighbours (all the wall condition needs).
+  // particles get all neighbours within rc. Wall and rigid particles get their fluid
+  // neighbours (all the wall condition needs) and, with `rigid_all`, rigid particles also
+  // their other neighbours after those (conduction inside and between bodies).
   void build(const ParticleStore<D>& s, const CellGrid<D>& grid, const CellBox<D>& box, double rc,
-             const ContactQuery* contact = nullptr);
+             const ContactQuery* contact = nullptr, bool rigid_all = false);
 
   const std::uint32_t* begin(std::size_t i) const { return nbr_.data() + start_[i]; }
   const std::uint32_t* end(std::size_t i) const { return nbr_.data() + start_[i + 1]; }
+  // For wall and rigid particles: the end of the fluid neighbours, which come first.
+  const std::uint32_t* fluid_end(std::size_t i) const { return nbr_.data() + fluid_end_[i]; }
   std::size_t pairs() const { return nbr_.size(); }
   // Contact candidates of owned rigid particle i (empty without a ContactQuery).
   const std::uint32_t* contacts_begin(std::size_t i) const {
@@ -76,7 +79,7 @@ class NeighborList {
   CellBox<D> box_;
   ICoord<D> dims_{};
   std::vector<std::uint32_t> cell_start_, cell_items_, cell_of_, cell_fluid_;
-  std::vector<std::uint32_t> start_, nbr_;
+  std::vector<std::uint32_t> start_, nbr_, fluid_end_, others_;
   std::vector<std::uint32_t> contact_start_, contact_nbr_;
   double min_contact_ = 0;
 };

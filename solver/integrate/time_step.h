@@ -18,6 +18,11 @@ class TimeStepBound {
     if (nu_max > 0) constant_ = std::min(constant_, 0.125 * h * h / nu_max);
     if (body_max > 0) constant_ = std::min(constant_, 0.25 * std::sqrt(h / body_max));
   }
+  // A further bound that does not depend on the flow (conduction 0.1 rho c_p h^2/kappa,
+  // Fuchs 2021 eq. 41).
+  void add_limit(double dt) {
+    if (dt > 0) constant_ = std::min(constant_, dt);
+  }
   // dt for the current largest speed.
   double dt(double u_max) const { return f_ * std::min(0.25 * h_ / (c_ + u_max), constant_); }
   std::string limited_by(double u_max) const {

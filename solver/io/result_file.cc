@@ -151,8 +151,8 @@ void ResultFile::write_snapshot(const ParticleStore<D>& s, double t, std::int64_
     h5::write_rows(g, "id", H5T_NATIVE_INT64, total, offset, local, 1, s.id.data());
     h5::write_rows(g, "kind", H5T_NATIVE_UINT8, total, offset, local, 1, s.kind.data());
     h5::write_rows(g, "material", H5T_NATIVE_UINT16, total, offset, local, 1, s.material.data());
-    for (const auto* c : int_fields_)
-      h5::write_rows(g, c->name(), H5T_NATIVE_INT32, total, offset, local, 1, c->data());
+    for (const auto& x : extra_)
+      h5::write_rows(g, x.column->name(), x.type, total, offset, local, 1, x.column->bytes());
     g.reset();
     flush_into(f);
   }
@@ -162,7 +162,7 @@ void ResultFile::write_snapshot(const ParticleStore<D>& s, double t, std::int64_
 
 void ResultFile::write_xdmf_on_root() const {
   std::vector<XdmfField> fields = fields_;
-  for (const auto* c : int_fields_) fields.push_back({c->name(), 1, "Int", 4});
+  for (const auto& f : extra_) fields.push_back({f.column->name(), 1, f.xdmf_type, f.precision});
   write_xdmf(xmf_, std::filesystem::path(h5_).filename().string(), snapshots_, fields);
 }
 

@@ -37,8 +37,11 @@ class ResultFile {
   bool carry_over(const std::string& previous, double t,
                   const std::map<std::string, std::string>& meta);
 
-  // An extra per-particle field written with every snapshot (e.g. the body index).
-  void add_field(const Column<std::int32_t>& c) { int_fields_.push_back(&c); }
+  // Extra per-particle fields written with every snapshot (body index, temperature, ...).
+  void add_field(const Column<std::int32_t>& c) {
+    extra_.push_back({&c, H5T_NATIVE_INT32, "Int", 4});
+  }
+  void add_field(const Column<double>& c) { extra_.push_back({&c, H5T_NATIVE_DOUBLE, "Float", 8}); }
 
   template <int D>
   void write_snapshot(const ParticleStore<D>& s, double t, std::int64_t step);
@@ -61,7 +64,13 @@ class ResultFile {
   std::vector<SnapshotEntry> snapshots_;
   std::map<std::string, Series> series_;
   std::vector<XdmfField> fields_;
-  std::vector<const Column<std::int32_t>*> int_fields_;
+  struct ExtraField {
+    const ColumnBase* column;
+    hid_t type;
+    const char* xdmf_type;
+    int precision;
+  };
+  std::vector<ExtraField> extra_;
 };
 
 }  // namespace sph

@@ -142,7 +142,7 @@ void compute_rigid_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, cons
   for (std::size_t r = 0; r < s.owned(); ++r) {
     if (s.kind[r] != Kind::kRigid) continue;
     Vec<D> f = Vec<D>::Zero();
-    for (const std::uint32_t* ip = nl.begin(r); ip != nl.end(r); ++ip) {
+    for (const std::uint32_t* ip = nl.begin(r); ip != nl.fluid_end(r); ++ip) {
       const std::uint32_t i = *ip;  // a fluid particle
       const Vec<D> rij = s.x[i] - s.x[r];
       const double dist = rij.norm();

@@ -48,7 +48,7 @@ class WallBoundary {
       int mat = -1;
       bool mixed = false;
       const Vec<D> xw = s_.x[w];
-      for (const std::uint32_t* fp = nl.begin(w); fp != nl.end(w); ++fp) {
+      for (const std::uint32_t* fp = nl.begin(w); fp != nl.fluid_end(w); ++fp) {
         const std::uint32_t f = *fp;
         const Vec<D> rwf = xw - s_.x[f];
         const double W = k_.W(rwf.norm());
@@ -71,7 +71,7 @@ class WallBoundary {
       }
       if (mixed) {
         std::fill(weight.begin(), weight.end(), 0.0);
-        for (const std::uint32_t* fp = nl.begin(w); fp != nl.end(w); ++fp)
+        for (const std::uint32_t* fp = nl.begin(w); fp != nl.fluid_end(w); ++fp)
           weight[s_.material[*fp]] += k_.W((xw - s_.x[*fp]).norm());
         mat = static_cast<int>(std::max_element(weight.begin(), weight.end()) - weight.begin());
       }

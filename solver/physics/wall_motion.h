@@ -13,19 +13,17 @@ template <int D>
 class WallMotion {
  public:
   static constexpr const char* kName = "wall_motion";
-  // paths[k]: motion of the particles whose "wall_index" is k.
-  WallMotion(ParticleStore<D>& s, std::vector<MotionPath> paths)
+  // paths[k]: motion of the particles whose wall index is k.
+  WallMotion(ParticleStore<D>& s, std::vector<MotionPath> paths, Column<std::uint16_t>& wall_index)
       : s_(s),
         paths_(std::move(paths)),
         x0_(s.template add<Vec<D>>("reference_position", kName, true)),
-        wall_(s.template add<std::uint16_t>("wall_index", kName, true)),
+        wall_(wall_index),
         accel_(s.template add<Vec<D>>("wall_acceleration", kName, false)) {
     x0_.set_ghost(false);
-    wall_.set_ghost(false);
   }
 
   Column<Vec<D>>& reference_position() { return x0_; }
-  Column<std::uint16_t>& wall_index() { return wall_; }
   const Column<Vec<D>>& acceleration() const { return accel_; }
 
   // Moves the owned wall particles to time t. `advect` (the transport velocity column, if

@@ -46,8 +46,10 @@ struct RunOutcome {
   std::int64_t steps = 0;
   double time = 0;
   double wall_seconds = 0;
-  // Active physics units and their share of the step time (name -> seconds).
+  // Active physics units and their share of the step time (name -> seconds, rank 0).
   std::map<std::string, double> unit_seconds;
+  // Per-particle storage (and neighbour lists) by the unit that owns it, all ranks [bytes].
+  std::map<std::string, double> unit_bytes;
 };
 
 struct RunOptions {

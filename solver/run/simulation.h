@@ -36,6 +36,7 @@
 #include "solver/physics/equation_of_state.h"
 #include "solver/physics/fluid_forces.h"
 #include "solver/physics/fluid_table.h"
+#include "solver/physics/scalar_diffusion.h"
 #include "solver/physics/wall_boundary.h"
 #include "solver/physics/wall_motion.h"
 #include "solver/run/output_schedule.h"
@@ -98,6 +99,18 @@ class Simulation {
   void apply_wall_condition();
   void compute_forces();
   void move_bodies(double dt);
+  void build_transport_units();
+  void transport_scalars(double dt);
+  void set_wall_scalars(double t);
+  void sample_scalars();
+  double initial_scalar(const SceneParticle& p, bool temperature) const;
+  // Rigid particles need all their neighbours when they conduct or diffuse.
+  bool rigid_all() const { return heat_.has_value() || concentration_.has_value(); }
+  // The wall index column, or an empty one for cases without walls.
+  const Column<std::uint16_t>* wall_index_or_empty() const {
+    return wall_index_ ? wall_index_ : &no_walls_;
+  }
+  Column<std::uint16_t> no_walls_{"wall_index", "walls", false};
   void sample_bodies();
   void integrate_step(double dt);
   struct EndOfStep {
@@ -141,6 +154,9 @@ class Simulation {
   std::optional<FluidForces<D, K>> forces_;
   std::optional<BodyForce<D>> body_;
   std::optional<RigidBodies<D>> bodies_;
+  std::optional<ScalarDiffusion<D, K>> heat_;           // Fuchs 2021 eq. 28
+  std::optional<ScalarDiffusion<D, K>> concentration_;  // Fuchs 2021 Remark 4
+  Column<std::uint16_t>* wall_index_ = nullptr;
   std::optional<SpringDashpotContact<D>> contact_;
   bool contact_possible_ = false;  // a contact candidate nearer than dx (+ margin): substep
   double min_rigid_mass_ = 0;

@@ -82,6 +82,7 @@ void Simulation<D, K>::build_units() {
   if (fm.density() == v1::CONTINUITY)
     continuity_.emplace(s_, kernel_, wall_volume_, tvf ? *transport_ : s_.v);
   if (c_.walls_size() > 0) {
+    wall_index_ = &s_.template add<std::uint16_t>("wall_index", "walls", true);
     walls_.emplace(s_, kernel_, fluids_);
     units_.push_back(WallBoundary<D, K>::kName);
     bool any_slip = false, any_motion = false;
@@ -96,7 +97,7 @@ void Simulation<D, K>::build_units() {
           &s_.template add<std::uint8_t>("wall_free_slip", WallBoundary<D, K>::kName, true);
     }
     if (any_motion) {
-      wall_motion_.emplace(s_, std::move(paths));
+      wall_motion_.emplace(s_, std::move(paths), *wall_index_);
       units_.push_back(WallMotion<D>::kName);
     }
   }
@@ -157,6 +158,7 @@ void Simulation<D, K>::build_units() {
   }
   const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
   bound_.emplace(h_, factor, c_max, nu_max, body_ ? body_->max_magnitude() : 0.0);
+  build_transport_units();
   if (c_.probes_size() > 0) {
     std::vector<ProbeSet<D>> sets;
     for (const auto& p : c_.probes()) {
@@ -208,12 +210,143 @@ void Simulation<D, K>::build_units() {
 }
 
 template <int D, class K>
+void Simulation<D, K>::build_transport_units() {
+  const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
+  std::vector<int> wall_material;
+  for (const auto& w : c_.walls())
+    wall_material.push_back(w.material().empty() ? -1 : material_index(mats_, w.material()));
+  if (c_.has_thermal()) {
+    std::vector<DiffusionMaterial> m;
+    for (const auto& pm : c_.materials()) {
+      m.push_back({pm.thermal_conductivity(), pm.has_heat_capacity() ? pm.heat_capacity() : 1.0,
+                   pm.density(), false});
+      // Conduction bound 0.1 rho c_p h^2 / kappa (Fuchs 2021 eq. 41).
+      if (pm.thermal_conductivity() > 0)
+        bound_->add_limit(factor * 0.1 * pm.density() * m.back().capacity * h_ * h_ /
+                          pm.thermal_conductivity());
+    }
+    std::vector<std::optional<TimeFunction>> walls;
+    for (const auto& w : c_.walls())
+      walls.push_back(w.has_temperature()
+                          ? std::optional<TimeFunction>(TimeFunction(w.temperature().value()))
+                          : std::nullopt);
+    heat_.emplace(s_, kernel_, "temperature", m, walls, wall_material, wall_volume_,
+                  c_.thermal().volumetric_heat_source());
+    units_.push_back("heat_conduction");
+    result_.add_field(heat_->values());
+    for (const char* n : {"temperature_min", "temperature_max", "thermal_energy"})
+      result_.add_series(std::string("diagnostics/") + n);
+  }
+  if (c_.has_diffusion()) {
+    std::vector<DiffusionMaterial> m;
+    for (const auto& pm : c_.materials()) {
+      m.push_back({pm.diffusivity(), 1.0, pm.density(), pm.fixed_concentration()});
+      if (pm.diffusivity() > 0)
+        bound_->add_limit(factor * 0.1 * pm.density() * h_ * h_ / pm.diffusivity());
+    }
+    std::vector<std::optional<TimeFunction>> walls;
+    for (const auto& w : c_.walls())
+      walls.push_back(w.has_concentration()
+                          ? std::optional<TimeFunction>(TimeFunction(w.concentration().value()))
+                          : std::nullopt);
+    concentration_.emplace(s_, kernel_, "concentration", m, walls, wall_material, wall_volume_,
+                           0.0);
+    units_.push_back("concentration_diffusion");
+    result_.add_field(concentration_->values());
+    for (const char* n : {"concentration_min", "concentration_max", "species_mass"})
+      result_.add_series(std::string("diagnostics/") + n);
+  }
+}
+
+template <int D, class K>
+void Simulation<D, K>::set_wall_scalars(double t) {
+  if (!wall_index_) return;
+  if (heat_) heat_->set_wall_values(t, *wall_index_);
+  if (concentration_) concentration_->set_wall_values(t, *wall_index_);
+}
+
+template <int D, class K>
+void Simulation<D, K>::transport_scalars(double dt) {
+  if (dt <= 0) return;
+  for (ScalarDiffusion<D, K>* unit :
+       {heat_ ? &*heat_ : nullptr, concentration_ ? &*concentration_ : nullptr}) {
+    if (!unit) continue;
+    Timer tm(
+        timer(unit == (heat_ ? &*heat_ : nullptr) ? "heat_conduction" : "concentration_diffusion"));
+    if (unit->has_dirichlet_walls()) {
+      // The mirror values use this step's fluid values at the new positions.
+      unit->extrapolate_walls(nl_, t_, *wall_index_);
+      Timer th(timer("halo_exchange"));
+      halo_.update(s_, {&unit->values()});
+    }
+    unit->run(nl_, dt, *wall_index_or_empty());
+  }
+}
+
+// Extremes and content (thermal energy sum m c_p T, species mass sum m C) of the scalars.
+template <int D, class K>
+void Simulation<D, K>::sample_scalars() {
+  for (int which = 0; which < 2; ++which) {
+    ScalarDiffusion<D, K>* unit =
+        which == 0 ? (heat_ ? &*heat_ : nullptr) : (concentration_ ? &*concentration_ : nullptr);
+    if (!unit) continue;
+    std::vector<double> ext = {-std::numeric_limits<double>::infinity(),
+                               -std::numeric_limits<double>::infinity()};
+    double content = 0;
+    for (std::size_t i = 0; i < s_.owned(); ++i) {
+      if (s_.kind[i] == Kind::kWall) continue;
+      const double v = unit->values()[i];
+      ext[0] = std::max(ext[0], -v);
+      ext[1] = std::max(ext[1], v);
+      const auto& pm = c_.materials(s_.material[i]);
+      content += s_.m[i] * v * (which == 0 && pm.has_heat_capacity() ? pm.heat_capacity() : 1.0);
+    }
+    comm_.max_inplace(ext);
+    content = comm_.sum(content);
+    const std::string base = which == 0 ? "diagnostics/temperature_" : "diagnostics/concentration_";
+    result_.append_series(base + "min", {-ext[0]});
+    result_.append_series(base + "max", {ext[1]});
+    result_.append_series(which == 0 ? "diagnostics/thermal_energy" : "diagnostics/species_mass",
+                          {content});
+  }
+}
+
+template <int D, class K>
 void Simulation<D, K>::decompose_by_histogram() {
   std::vector<std::int64_t> counts(static_cast<size_t>(grid_.total()), 0);
   for (std::size_t i = 0; i < s_.owned(); ++i)
     ++counts[static_cast<size_t>(grid_.linear(grid_.canonical(grid_.coord(s_.x[i]))))];
   comm_.sum_inplace(counts);
   halo_.set_decomposition(Decomposition<D>(grid_, comm_.size(), counts));
+}
+
+template <int D, class K>
+double Simulation<D, K>::initial_scalar(const SceneParticle& p, bool temperature) const {
+  const double fallback =
+      temperature ? c_.thermal().initial_temperature() : c_.diffusion().initial_concentration();
+  switch (p.kind) {
+    case Kind::kFluid: {
+      const auto& r = c_.fluids(p.region);
+      if (temperature && r.has_initial_temperature()) return r.initial_temperature();
+      if (!temperature && r.has_initial_concentration()) return r.initial_concentration();
+      return fallback;
+    }
+    case Kind::kRigid: {
+      const auto& b = c_.bodies(p.body);
+      if (temperature && b.has_initial_temperature()) return b.initial_temperature();
+      if (!temperature && b.has_initial_concentration()) return b.initial_concentration();
+      return fallback;
+    }
+    case Kind::kWall: {
+      const auto& w = c_.walls(p.wall);
+      if (temperature && w.has_temperature())
+        return TimeFunction(w.temperature().value()).value(0.0);
+      if (!temperature && w.has_concentration())
+        return TimeFunction(w.concentration().value()).value(0.0);
+      return fallback;
+    }
+  }
+  return fallback;
 }
 
 template <int D, class K>
@@ -255,8 +388,10 @@ void Simulation<D, K>::build_scene() {
     if (background_) (*background_)[i] = Vec<D>::Zero();
     if (wall_motion_) {
       wall_motion_->reference_position()[i] = s_.x[i];
-      wall_motion_->wall_index()[i] = p.wall;
     }
+    if (wall_index_) (*wall_index_)[i] = p.wall;
+    if (heat_) heat_->values()[i] = initial_scalar(p, true);
+    if (concentration_) concentration_->values()[i] = initial_scalar(p, false);
     if (free_slip_)
       (*free_slip_)[i] = p.kind == Kind::kWall && c_.walls(p.wall).free_slip() ? 1 : 0;
     if (bodies_) bodies_->body_index()[i] = p.body;
@@ -278,9 +413,9 @@ void Simulation<D, K>::exchange_and_search() {
   if (contact_) {
     ContactQuery q{bodies_->body_index().data(), contact_->candidate_range(),
                    contact_->with_walls()};
-    nl_.build(s_, grid_, halo_.ghost_box(), rc_, &q);
+    nl_.build(s_, grid_, halo_.ghost_box(), rc_, &q, rigid_all());
   } else {
-    nl_.build(s_, grid_, halo_.ghost_box(), rc_);
+    nl_.build(s_, grid_, halo_.ghost_box(), rc_, nullptr, rigid_all());
   }
 }
 
@@ -364,6 +499,7 @@ void Simulation<D, K>::prime() {
     wall_motion_->run(t_, transport_);
   }
   if (bodies_) bodies_->place_owned_particles();
+  set_wall_scalars(t_);
   exchange_and_search();
   compute_density_and_pressure(0.0);
   apply_wall_condition();
@@ -395,9 +531,11 @@ void Simulation<D, K>::integrate_step(double dt) {
     Timer tm(timer(WallMotion<D>::kName));
     wall_motion_->run(t_, transport_);
   }
+  set_wall_scalars(t_);
   exchange_and_search();
   compute_density_and_pressure(dt);
   apply_wall_condition();
+  transport_scalars(dt);  // Fuchs 2021 eq. 37: rates from T^n at r^{n+1}, rho^{n+1}
   compute_forces();
   Timer tm(timer("integrate"));
   kick(s_, 0.5 * dt);
@@ -495,6 +633,7 @@ void Simulation<D, K>::sample_series() {
   result_.append_series("diagnostics/momentum",
                         std::vector<double>(cs.momentum.data(), cs.momentum.data() + D));
   if (bodies_) sample_bodies();
+  sample_scalars();
   if (probes_) {
     Timer tp(timer(Probes<D, K>::kName));
     const auto values = probes_->sample(s_, nl_, grid_, halo_.my_box(), comm_);
@@ -817,8 +956,27 @@ RunOutcome Simulation<D, K>::run() {
                    : status == RunStatus::kInterrupted ? "interrupted"
                                                        : "unstable";
   auto meta = std::map<std::string, std::string>{{"status", st}, {"message", message}};
+  // What each unit cost: time (rank 0) and storage (all ranks), for "only the effects a scene
+  // calls for".
+  std::map<std::string, double> bytes;
+  {
+    const auto local = memory_by_owner();
+    std::vector<double> v;
+    for (const auto& [k, b] : local) v.push_back(static_cast<double>(b));
+    comm_.sum_inplace(v);  // every rank has the same units, so the same keys in the same order
+    std::size_t i = 0;
+    for (const auto& [k, b] : local) bytes[k] = v[i++];
+  }
+  std::string times, mem;
+  for (const auto& [k, sec] : timers_)
+    times += (times.empty() ? "" : ",") + k + "=" + std::to_string(sec);
+  for (const auto& [k, b] : bytes)
+    mem += (mem.empty() ? "" : ",") + k + "=" + std::to_string(static_cast<long long>(b));
+  meta["unit_seconds"] = times;
+  meta["unit_bytes"] = mem;
   result_.flush();
   result_.set_meta(meta);
+  out.unit_bytes = bytes;
   out.status = status;
   out.message = message;
   out.steps = step_;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <unordered_set>
 
 #include "case/estimate.h"
 #include "case/lattice.h"
@@ -47,6 +48,20 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
     });
   }
 
+  // Lattice points taken by explicit point sets of walls and bodies (a point set has no
+  // interior to test, so the lattice cell of each of its points is claimed).
+  std::unordered_set<std::int64_t> claimed;
+  auto lattice_key = [&](const Point3& x) {
+    std::int64_t key = 0;
+    for (int a = d - 1; a >= 0; --a)
+      key = key * 4000037 + static_cast<std::int64_t>(std::floor((x[a] - spec.origin[a]) / dx));
+    return key;
+  };
+  for (const auto* group : {&walls_, &bodies_})
+    for (const auto& shape : *group)
+      if (const auto* pts = shape->explicit_points())
+        for (const auto& x : *pts) claimed.insert(lattice_key(x));
+
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     const auto& body = c_.bodies(static_cast<int>(b));
     SceneParticle p;
@@ -83,12 +98,14 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
     const MaterialParams& m = mats_[static_cast<std::size_t>(mi)];
     SceneParticle p;
     p.kind = Kind::kFluid;
+    p.region = static_cast<std::int32_t>(f);
     p.material = static_cast<std::uint16_t>(mi);
     for_each_lattice_point(*fluids_[f], spec, clip, [&](const Point3& x) {
       for (const auto& w : walls_)
         if (w->contains(x)) return;
       for (const auto& b : bodies_)
         if (b->contains(x)) return;
+      if (!claimed.empty() && claimed.count(lattice_key(x))) return;
       for (std::size_t k = 0; k < f; ++k)
         if (fluids_[k]->contains(x)) return;
       p.x = x;

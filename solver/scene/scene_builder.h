@@ -18,8 +18,9 @@ namespace sph {
 struct SceneParticle {
   Kind kind = Kind::kFluid;
   std::uint16_t material = kNoMaterial;
-  std::uint16_t wall = 0;  // index of the wall (walls only)
-  std::int32_t body = -1;  // index of the rigid body (rigid particles only)
+  std::uint16_t wall = 0;    // index of the wall (walls only)
+  std::int32_t body = -1;    // index of the rigid body (rigid particles only)
+  std::int32_t region = -1;  // index of the fluid region (fluid particles only)
   Point3 x = Point3::Zero();
   Point3 v = Point3::Zero();
   double rho = 1, mass = 1;

@@ -109,8 +109,8 @@ TEST(CaseValidation, DimensionSpecificShapes) {
 }
 
 TEST(CaseValidation, NotImplementedUnitsAreRejectedNotIgnored) {
-  auto errs = errors_of(R"(thermal { initial_temperature: 300 })");
-  EXPECT_TRUE(has_error(errs, "thermal", "not implemented yet")) << dump(errs);
+  auto errs = errors_of(R"(phase_transitions { solid_material: "s" })");
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0]", "not implemented yet")) << dump(errs);
   errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
 bodies { name: "b" material: "s" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } }
 contact { stiffness: 1 friction { coefficient: 0.3 } })");
@@ -134,6 +134,27 @@ bodies { name: "b" material: "s" motion_type: PRESCRIBED shape { ball { center {
   errs = errors_of(R"(contact { stiffness: -1 })");
   EXPECT_TRUE(has_error(errs, "contact.stiffness", "must be > 0")) << dump(errs);
   EXPECT_TRUE(has_error(errs, "contact", "no rigid bodies")) << dump(errs);
+}
+
+TEST(CaseValidation, EffectsMustBeEnabledAndComplete) {
+  // Configured but not enabled: a validation error naming the field.
+  auto errs = errors_of(
+      R"(materials { name: "hot" density: 1 eos { sound_speed: 1 } thermal_conductivity: 2 })");
+  EXPECT_TRUE(
+      has_error(errs, "materials[1].thermal_conductivity", "heat conduction is not enabled"))
+      << dump(errs);
+  errs = errors_of(
+      R"(walls { shape { box { lo { x: 0 y: 0 } hi { x: 2 y: 0.2 } } } concentration { value { constant: 1 } } })");
+  EXPECT_TRUE(has_error(errs, "walls[0].concentration", "concentration diffusion is not enabled"))
+      << dump(errs);
+  // Enabled without what it needs: the material of a fluid region lacks its coefficients.
+  errs = errors_of(R"(thermal { initial_temperature: 300 })");
+  EXPECT_TRUE(has_error(errs, "materials[0].heat_capacity", "required: heat conduction is enabled"))
+      << dump(errs);
+  errs = errors_of(R"(diffusion { })");
+  EXPECT_TRUE(
+      has_error(errs, "materials[0].diffusivity", "required: concentration diffusion is enabled"))
+      << dump(errs);
 }
 
 TEST(CaseValidation, TransportPressureWithoutTransportVelocity) {

@@ -1,0 +1,180 @@
+// Heat conduction (Fuchs 2021 eq. 28) and concentration diffusion (Remark 4) against closed-form
+// solutions, at several resolutions with the observed order of convergence printed:
+//  - a semi-infinite slab whose wall is held at T = 1 (erfc solution),
+//  - two semi-infinite blocks of different effusivity e = sqrt(k rho c) in contact: the contact
+//    temperature is (e1 T1 + e2 T2)/(e1 + e2), here fluid against a fixed rigid body,
+//  - steady conduction through two layers between walls at 1 and 0,
+//  - a top hat of concentration spreading (difference of erfs).
+// All are 1D problems in a strip periodic in y, fluid at rest.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "case/load.h"
+#include "tests/support/result_reader.h"
+#include "tests/support/test_cases.h"
+
+namespace sph {
+namespace {
+
+std::string num(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.10g", v);
+  return b;
+}
+
+// Max |T - exact| over fluid and rigid particles of the last snapshot.
+double max_error(const std::string& out, const std::string& field,
+                 const std::function<double(double, double)>& exact, double xmin = -1e300,
+                 double xmax = 1e300) {
+  const std::string path = out + "/result.h5";
+  test::ResultReader rr(path);
+  const test::Snapshot s = rr.last();
+  // The scalar field is an extra dataset of the snapshot.
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  char g[64];
+  std::snprintf(g, sizeof g, "/snapshots/%06d/%s", rr.snapshot_count() - 1, field.c_str());
+  hid_t d = H5Dopen2(f, g, H5P_DEFAULT);
+  std::vector<double> v(s.size());
+  H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+  H5Dclose(d);
+  H5Fclose(f);
+  double worst = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const double x = s.position[3 * i];
+    if (s.kind[i] == 1 || x < xmin || x > xmax) continue;
+    worst = std::max(worst, std::abs(v[i] - exact(x, s.time)));
+  }
+  return worst;
+}
+
+// A strip [x0, x1] x [0, 8 dx], periodic in y, with the given materials, regions and walls.
+std::string strip(double dx, double x0, double x1, const std::string& body) {
+  const double pad = 3 * dx;
+  return "dimension: 2 dx: " + num(dx) + " domain { lo { x: " + num(x0 - pad) +
+         " y: 0 } hi { x: " + num(x1 + pad) + " y: " + num(8 * dx) + " } } periodic_y: true " +
+         body;
+}
+
+void report_order(const char* what, const std::vector<double>& dxs,
+                  const std::vector<double>& errors) {
+  std::printf("%s:", what);
+  for (std::size_t k = 0; k < dxs.size(); ++k) {
+    std::printf(" dx = %.4g: %.2e", dxs[k], errors[k]);
+    if (k > 0)
+      std::printf(" (order %.2f)",
+                  std::log(errors[k - 1] / errors[k]) / std::log(dxs[k - 1] / dxs[k]));
+    std::printf(";");
+  }
+  std::printf("\n");
+}
+
+TEST(Conduction, SemiInfiniteSlabErfc) {
+  // kappa = rho = c_p = 1 (alpha = 1); the wall x < 0 held at 1, the fluid starts at 0.
+  const double t_end = 0.01;
+  std::vector<double> dxs = {0.02, 0.01}, errors;
+  for (double dx : dxs) {
+    const auto c = parse_case_text(strip(dx, 0, 1, R"(
+      materials { name: "f" density: 1 eos { sound_speed: 10 } heat_capacity: 1 thermal_conductivity: 1 }
+      fluids { material: "f" shape { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } initial_temperature: 0 }
+      walls { name: "hot" shape { box { lo { x: -1 y: 0 } hi { x: 0 y: 1 } } } temperature { value { constant: 1 } } }
+      walls { name: "far" shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } }
+      thermal { initial_temperature: 0 }
+      time { end_time: )" + num(t_end) + R"( })"));
+    const std::string out = test::output_dir("conduction_slab");
+    const RunOutcome r = test::run(c, out);
+    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    errors.push_back(max_error(
+        out, "temperature", [](double x, double t) { return std::erfc(x / (2 * std::sqrt(t))); }));
+  }
+  report_order("Semi-infinite slab, T_wall = 1, t = 0.01, max |T - erfc(x/2sqrt(t))|", dxs, errors);
+  EXPECT_LT(errors.back(), 1e-3);
+  EXPECT_GT(std::log(errors[0] / errors[1]) / std::log(2.0), 1.5);  // second order
+  EXPECT_LT(errors.back(), errors.front());
+}
+
+TEST(Conduction, ContactTemperatureOfTwoMaterials) {
+  // Fluid (k = 1, rho c = 1, T = 1) for x < 0 against a fixed rigid block (k = 4, rho c = 1,
+  // T = 0) for x > 0: effusivities 1 and 2, contact temperature 1/3.
+  const double t_end = 0.005, e1 = 1, e2 = 2, Tc = e1 / (e1 + e2), a1 = 1, a2 = 4;
+  auto exact = [&](double x, double t) {
+    return x < 0 ? Tc + (1 - Tc) * std::erf(-x / (2 * std::sqrt(a1 * t)))
+                 : Tc * std::erfc(x / (2 * std::sqrt(a2 * t)));
+  };
+  std::vector<double> dxs = {0.02, 0.01}, errors;
+  for (double dx : dxs) {
+    const auto c = parse_case_text(strip(dx, -1, 1, R"(
+      materials { name: "f" density: 1 eos { sound_speed: 10 } heat_capacity: 1 thermal_conductivity: 1 }
+      materials { name: "s" phase: SOLID density: 1 heat_capacity: 1 thermal_conductivity: 4 }
+      fluids { material: "f" shape { box { lo { x: -1 y: 0 } hi { x: 0 y: 1 } } } initial_temperature: 1 }
+      bodies { name: "block" material: "s" motion_type: FIXED shape { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } initial_temperature: 0 }
+      walls { shape { box { lo { x: -2 y: 0 } hi { x: -1 y: 1 } } } }
+      walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } }
+      thermal { }
+      time { end_time: )" + num(t_end) + R"( })"));
+    const std::string out = test::output_dir("conduction_contact");
+    const RunOutcome r = test::run(c, out);
+    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    errors.push_back(max_error(out, "temperature", exact, -0.5, 0.5));
+  }
+  report_order("Two blocks, effusivity 1 | 2, contact temperature 1/3, t = 0.005, max |T - exact|",
+               dxs, errors);
+  EXPECT_LT(errors.back(), 2e-3);
+  EXPECT_LT(errors.back(), errors.front());
+}
+
+TEST(Conduction, SteadyLayeredSlab) {
+  // Walls at 1 (x < 0) and 0 (x > 1); k = 1 on [0, 0.5], k = 3 on [0.5, 1]: flux 1.5, the
+  // interface at 0.25. (c_p = 3 in the second layer keeps both diffusivities at 1.)
+  auto exact = [](double x, double) { return x < 0.5 ? 1 - 1.5 * x : 0.25 - 0.5 * (x - 0.5); };
+  std::vector<double> dxs = {0.05, 0.025}, errors;
+  for (double dx : dxs) {
+    const auto c = parse_case_text(strip(dx, 0, 1, R"(
+      materials { name: "a" density: 1 eos { sound_speed: 1 } heat_capacity: 1 thermal_conductivity: 1 }
+      materials { name: "b" density: 1 eos { sound_speed: 1 } heat_capacity: 3 thermal_conductivity: 3 }
+      fluids { material: "a" shape { box { lo { x: 0 y: 0 } hi { x: 0.5 y: 1 } } } }
+      fluids { material: "b" shape { box { lo { x: 0.5 y: 0 } hi { x: 1 y: 1 } } } }
+      walls { shape { box { lo { x: -1 y: 0 } hi { x: 0 y: 1 } } } temperature { value { constant: 1 } } }
+      walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } temperature { value { constant: 0 } } }
+      thermal { initial_temperature: 0.5 }
+      time { end_time: 1.2 })"));
+    const std::string out = test::output_dir("conduction_layers");
+    const RunOutcome r = test::run(c, out);
+    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    errors.push_back(max_error(out, "temperature", exact));
+  }
+  report_order("Layered slab k = 1 | 3, steady, max |T - exact|", dxs, errors);
+  EXPECT_LT(errors.back(), 1e-3);
+  EXPECT_LT(errors.back(), errors.front());
+}
+
+TEST(Diffusion, TopHatSpreads) {
+  // C = 1 on [0.45, 0.55], D = 0.01, rho = 1, t = 0.25 (sqrt(D t) = 0.05).
+  const double D = 0.01, t_end = 0.25;
+  auto exact = [&](double x, double t) {
+    const double s = 2 * std::sqrt(D * t);
+    return 0.5 * (std::erf((x - 0.45) / s) - std::erf((x - 0.55) / s));
+  };
+  std::vector<double> dxs = {0.01, 0.005}, errors;
+  for (double dx : dxs) {
+    const auto c = parse_case_text(strip(dx, 0, 1, R"(
+      materials { name: "f" density: 1 eos { sound_speed: 1 } diffusivity: 0.01 }
+      fluids { material: "f" shape { box { lo { x: 0.45 y: 0 } hi { x: 0.55 y: 1 } } } initial_concentration: 1 }
+      fluids { material: "f" shape { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } initial_concentration: 0 }
+      walls { shape { box { lo { x: -1 y: 0 } hi { x: 0 y: 1 } } } }
+      walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } }
+      diffusion { }
+      time { end_time: )" + num(t_end) + R"( })"));
+    const std::string out = test::output_dir("diffusion_tophat");
+    const RunOutcome r = test::run(c, out);
+    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    errors.push_back(max_error(out, "concentration", exact));
+  }
+  report_order("Top hat of concentration, D = 0.01, t = 0.25, max |C - exact|", dxs, errors);
+  EXPECT_LT(errors.back(), 5e-4);
+  EXPECT_LT(errors.back(), errors.front());
+}
+
+}  // namespace
+}  // namespace sph
