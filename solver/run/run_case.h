@@ -78,8 +78,9 @@ struct RunOptions {
   bool quiet = false;  // no progress lines on stdout (rank 0)
 };
 
-// Runs a validated case. Collective over `comm`: every rank calls it with the same case and
-// options (callbacks are used on rank 0 only). Never throws; errors come back as kError.
+// Runs a validated case. Collective over `comm`: every rank calls it with the same case.
+// The strings of the options (output_dir, case_text, metadata) are taken from rank 0;
+// callbacks are used on rank 0 only. Never throws; errors come back as kError.
 RunOutcome run_case(const v1::Case& c, MPI_Comm comm, const RunOptions& options);
 
 }  // namespace sph

@@ -1,0 +1,29 @@
+#pragma once
+// sphctl's subcommands. Each returns the process exit code (cli/exit_codes.h).
+#include <cstdint>
+#include <string>
+
+#include "cli/connection.h"
+#include "cli/options.h"
+
+namespace sph::ctl {
+
+int cmd_submit(const GlobalOptions& g, ArgScanner args);
+int cmd_status(const GlobalOptions& g, ArgScanner args);
+int cmd_list(const GlobalOptions& g, ArgScanner args);
+int cmd_watch(const GlobalOptions& g, ArgScanner args);
+int cmd_cancel(const GlobalOptions& g, ArgScanner args);
+int cmd_fetch(const GlobalOptions& g, ArgScanner args);
+int cmd_health(const GlobalOptions& g, ArgScanner args);
+
+// Follows a job's events until it ends, reconnecting (and resuming from the last event seen)
+// while the server is away. Returns the exit code for the job's final state.
+int watch_job(Connection& conn, const GlobalOptions& g, const std::string& job_id,
+              std::int64_t after_sequence);
+
+// Parses the positionals of a command that takes exactly `count` of them; prints usage
+// problems. Returns false on a problem.
+bool expect_positionals(ArgScanner& args, size_t count, const char* usage,
+                        std::vector<std::string>& out);
+
+}  // namespace sph::ctl

@@ -1,0 +1,130 @@
+#include "server/api/worker_service.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "server/api/errors.h"
+#include "server/clock.h"
+#include "server/common/job_state.h"
+#include "server/common/log.h"
+
+namespace sph::server::api {
+namespace {
+
+// A long poll is capped so that a pool notices a lost server within a reasonable time.
+constexpr double kMaxClaimWaitSeconds = 20;
+constexpr std::chrono::milliseconds kClaimPoll{500};
+
+bool is_sha256_hex(const std::string& s) {
+  return s.size() == 64 && std::all_of(s.begin(), s.end(), [](char ch) {
+           return (ch >= '0' && ch <= '9') || (ch >= 'a' && ch <= 'f');
+         });
+}
+
+}  // namespace
+
+grpc::Status WorkerServiceImpl::check_checkpoint(const std::string& job_id,
+                                                 const v1::Checkpoint& cp,
+                                                 const std::string& field) const {
+  if (!layout_.inside_job(job_id, cp.path()))
+    return invalid_argument(
+        field + ".path", "'" + cp.path() + "' is not inside " + layout_.job_dir(job_id).string());
+  return grpc::Status::OK;
+}
+
+grpc::Status WorkerServiceImpl::Claim(grpc::ServerContext* context, const v1::ClaimRequest* request,
+                                      v1::ClaimResponse* response) {
+  if (auto s = auth_.check(*context); !s.ok()) return s;
+  if (request->pool_id().empty()) return invalid_argument("pool_id", "is required");
+  if (request->ranks() < 1) return invalid_argument("ranks", "must be >= 1");
+  const double wait = std::clamp(request->wait_seconds(), 0.0, kMaxClaimWaitSeconds);
+  const auto deadline =
+      EventFeed::Clock::now() +
+      std::chrono::duration_cast<EventFeed::Clock::duration>(std::chrono::duration<double>(wait));
+  return guarded([&] {
+    const store::ClaimInfo who{request->pool_id(), request->hostname(), request->ranks()};
+    while (true) {
+      // Read the generation before looking, so a submit in between still wakes us.
+      const auto generation = feed_.queue_generation();
+      if (auto grant = store_.claim(who, now_unix_ms())) {
+        *response = std::move(*grant);
+        const double lease = response->lease_seconds();
+        response->set_report_interval_seconds(std::min(2.0, lease / 4));
+        std::error_code ec;
+        std::filesystem::create_directories(response->output_dir(), ec);
+        if (ec)
+          service::log_line("cannot create %s: %s (the pool will try)",
+                            response->output_dir().c_str(), ec.message().c_str());
+        service::log_line("%s attempt %d claimed by %s (%d ranks)%s%s", response->job_id().c_str(),
+                          response->attempt(), request->pool_id().c_str(), request->ranks(),
+                          response->resume_from().empty() ? "" : ", resuming from ",
+                          response->resume_from().c_str());
+        return grpc::Status::OK;
+      }
+      if (EventFeed::Clock::now() >= deadline || feed_.shutting_down() || context->IsCancelled())
+        return grpc::Status::OK;  // no job: an empty reply
+      feed_.wait_for_queue(generation, std::min(deadline, EventFeed::Clock::now() + kClaimPoll));
+    }
+  });
+}
+
+grpc::Status WorkerServiceImpl::Report(grpc::ServerContext* context,
+                                       const v1::ReportRequest* request,
+                                       v1::ReportResponse* response) {
+  if (auto s = auth_.check(*context); !s.ok()) return s;
+  for (int i = 0; i < request->checkpoints_size(); ++i)
+    if (auto s = check_checkpoint(request->job_id(), request->checkpoints(i),
+                                  "checkpoints[" + std::to_string(i) + "]");
+        !s.ok())
+      return s;
+  return guarded([&] {
+    *response = store_.report(*request, now_unix_ms());
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status WorkerServiceImpl::Finish(grpc::ServerContext* context,
+                                       const v1::FinishRequest* request,
+                                       v1::FinishResponse* response) {
+  if (auto s = auth_.check(*context); !s.ok()) return s;
+  switch (request->outcome()) {
+    case v1::ATTEMPT_COMPLETED:
+    case v1::ATTEMPT_FAILED:
+    case v1::ATTEMPT_CANCELLED:
+    case v1::ATTEMPT_INTERRUPTED:
+      break;
+    default:
+      return invalid_argument("outcome", "must be COMPLETED, FAILED, CANCELLED or INTERRUPTED");
+  }
+  if (request->has_checkpoint() && !request->checkpoint().path().empty())
+    if (auto s = check_checkpoint(request->job_id(), request->checkpoint(), "checkpoint"); !s.ok())
+      return s;
+  // The manifest is what FetchResult will serve: every entry must be a file of this attempt,
+  // with the size the pool says it has.
+  for (int i = 0; i < request->files_size(); ++i) {
+    const auto& f = request->files(i);
+    const std::string field = "files[" + std::to_string(i) + "]";
+    if (auto problem = layout_.check_result_name(request->job_id(), request->attempt(), f.name()))
+      return invalid_argument(field + ".name", "'" + f.name() + "' " + *problem);
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(
+        layout_.attempt_dir(request->job_id(), request->attempt()) / f.name(), ec);
+    if (ec || static_cast<std::int64_t>(size) != f.size())
+      return invalid_argument(field + ".size", std::to_string(f.size()) +
+                                                   " does not match the file on disk (" +
+                                                   std::to_string(size) + " bytes)");
+    if (!is_sha256_hex(f.sha256()))
+      return invalid_argument(field + ".sha256", "must be 64 lowercase hex digits");
+  }
+  return guarded([&] {
+    const v1::JobState state = store_.finish(*request, now_unix_ms());
+    response->set_state(state);
+    service::log_line("%s attempt %d finished %s -> %s%s%s", request->job_id().c_str(),
+                      request->attempt(), service::outcome_name(request->outcome()),
+                      service::state_name(state), request->message().empty() ? "" : ": ",
+                      request->message().c_str());
+    return grpc::Status::OK;
+  });
+}
+
+}  // namespace sph::server::api

@@ -1,0 +1,35 @@
+#include "server/common/log.h"
+
+#include <chrono>
+#include <cstdarg>
+#include <cstdio>
+#include <ctime>
+
+namespace sph::service {
+namespace {
+const char* g_name = "sphd";
+}
+
+void set_log_name(const char* name) {
+  g_name = name;
+}
+
+void log_line(const char* format, ...) {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t t = std::chrono::system_clock::to_time_t(now);
+  const auto ms =
+      std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()) % 1000;
+  std::tm tm{};
+  localtime_r(&t, &tm);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y-%m-%d %H:%M:%S", &tm);
+  char msg[2048];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(msg, sizeof msg, format, args);
+  va_end(args);
+  // One fprintf per line so lines from different threads do not interleave.
+  std::fprintf(stderr, "%s.%03d %s: %s\n", stamp, static_cast<int>(ms.count()), g_name, msg);
+}
+
+}  // namespace sph::service

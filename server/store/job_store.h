@@ -1,0 +1,104 @@
+#pragma once
+// The job queue and its history in SQLite: submission (exactly once per request id), claims
+// with leases, fenced worker reports, terminal states with reasons, and the append-only event
+// log that WatchJob replays. Every method is one transaction and thread-safe; times are
+// passed in (unix milliseconds) so that lease expiry is testable without sleeping.
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "server/events/event_feed.h"
+#include "server/results/result_layout.h"
+#include "server/store/job_error.h"
+#include "server/store/sqlite.h"
+#include "sph/v1/service.pb.h"
+
+namespace sph::server::store {
+
+struct StoreOptions {
+  std::int64_t lease_ms = 30'000;
+  // A job whose lease expires this many times fails instead of being queued again (a case
+  // that crashes its pool every time must not loop forever).
+  int max_lost_leases = 5;
+};
+
+struct NewJob {
+  std::string request_id;
+  std::string name;
+  std::string case_text;  // canonical text
+  std::string case_sha256;
+  double estimated_particles = 0;
+};
+
+struct SubmitResult {
+  v1::Job job;
+  bool created = false;
+};
+
+struct ClaimInfo {
+  std::string pool;
+  std::string hostname;
+  int ranks = 1;
+};
+
+struct JobPage {
+  std::vector<v1::Job> jobs;
+  std::int64_t next_before = 0;  // id to continue below, 0 on the last page
+};
+
+class JobStore {
+ public:
+  JobStore(const std::string& db_path, ResultLayout layout, StoreOptions options, EventFeed& feed);
+
+  SubmitResult submit(const NewJob& job, std::int64_t now_ms);
+  v1::Job get(std::int64_t id, bool include_case);
+  // Newest first, ids below `before` (0: from the newest).
+  JobPage list(const std::vector<v1::JobState>& states, int page_size, std::int64_t before);
+  v1::Job cancel(std::int64_t id, const std::string& reason, std::int64_t now_ms);
+
+  // The oldest queued job as a new attempt, or nullopt when the queue is empty.
+  std::optional<v1::ClaimResponse> claim(const ClaimInfo& who, std::int64_t now_ms);
+  // Renews the lease; throws kStaleAttempt unless the attempt is the job's current one.
+  v1::ReportResponse report(const v1::ReportRequest& r, std::int64_t now_ms);
+  // Ends the attempt; idempotent for a repeated call with the same outcome.
+  v1::JobState finish(const v1::FinishRequest& r, std::int64_t now_ms);
+
+  // Re-queues (or fails, or cancels) running jobs whose lease ended before now. Returns how
+  // many jobs were affected.
+  int expire_leases(std::int64_t now_ms);
+  // After a server restart pools could not report while the server was away: give every
+  // running job a full lease from now.
+  void renew_all_leases(std::int64_t now_ms);
+
+  std::vector<v1::JobEvent> events_after(std::int64_t id, std::int64_t after, int limit);
+  v1::JobState state(std::int64_t id);
+
+  const StoreOptions& options() const { return options_; }
+
+ private:
+  struct Row;  // a job row as read for state transitions
+  Row load_row(std::int64_t id);
+  std::int64_t append_event(std::int64_t id, v1::JobEvent& event, std::int64_t now_ms);
+  void set_state(std::int64_t id, v1::JobState state, const std::string& reason, int attempt,
+                 std::int64_t now_ms, const std::string& pool = "");
+  void end_attempt(std::int64_t id, int attempt, v1::AttemptOutcome outcome,
+                   const std::string& reason, std::int64_t now_ms,
+                   const google::protobuf::Map<std::string, double>* unit_seconds = nullptr);
+  void store_checkpoint(std::int64_t id, v1::Checkpoint cp, int attempt, std::int64_t now_ms);
+  void store_progress(std::int64_t id, const v1::ProgressInfo& p, std::int64_t now_ms);
+  v1::Job read_job(std::int64_t id, bool include_case, bool include_attempts);
+  void publish();
+
+  Database db_;
+  ResultLayout layout_;
+  StoreOptions options_;
+  EventFeed& feed_;
+  std::mutex mu_;
+  // Events appended by the current transaction, published to the feed after it commits.
+  std::vector<std::pair<std::int64_t, std::int64_t>> pending_events_;
+  bool pending_queue_wakeup_ = false;
+};
+
+}  // namespace sph::server::store

@@ -1,0 +1,278 @@
+// The job store on a real SQLite file: exactly-once submission, leases and fencing, terminal
+// states with reasons, the append-only event log and schema versioning. Times are passed in,
+// so lease expiry needs no sleeping.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "server/common/job_state.h"
+#include "server/events/event_feed.h"
+#include "server/store/job_store.h"
+#include "server/store/schema.h"
+#include "server/store/sqlite.h"
+
+namespace sph::server::store {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::int64_t kLeaseMs = 1000;
+constexpr std::int64_t kT0 = 1'700'000'000'000;
+
+class StoreTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string tmpl = (fs::temp_directory_path() / "sphd-store-XXXXXX").string();
+    ASSERT_NE(mkdtemp(tmpl.data()), nullptr);
+    dir_ = tmpl;
+    open();
+  }
+  void TearDown() override {
+    store_.reset();
+    fs::remove_all(dir_);
+  }
+  void open(int max_lost = 3) {
+    store_.reset();
+    store_ = std::make_unique<JobStore>(db(), ResultLayout(dir_ + "/results"),
+                                        StoreOptions{kLeaseMs, max_lost}, feed_);
+  }
+  std::string db() const { return dir_ + "/jobs.db"; }
+
+  NewJob job(const std::string& request_id, const std::string& text = "name: \"a\"") {
+    return NewJob{request_id, "a", text, "sha-of-" + text, 100};
+  }
+  std::int64_t submit(const std::string& request_id) {
+    const auto r = store_->submit(job(request_id), kT0);
+    return std::stoll(r.job.id().substr(4));
+  }
+  v1::ClaimResponse claim(std::int64_t now, const std::string& pool = "pool-a") {
+    auto c = store_->claim(ClaimInfo{pool, "host", 2}, now);
+    EXPECT_TRUE(c.has_value());
+    return c.value_or(v1::ClaimResponse{});
+  }
+  v1::ReportRequest report_for(const v1::ClaimResponse& c) {
+    v1::ReportRequest r;
+    r.set_job_id(c.job_id());
+    r.set_attempt(c.attempt());
+    return r;
+  }
+  v1::FinishRequest finish_for(const v1::ClaimResponse& c, v1::AttemptOutcome outcome) {
+    v1::FinishRequest r;
+    r.set_job_id(c.job_id());
+    r.set_attempt(c.attempt());
+    r.set_outcome(outcome);
+    return r;
+  }
+
+  std::string dir_;
+  EventFeed feed_;
+  std::unique_ptr<JobStore> store_;
+};
+
+TEST_F(StoreTest, SameRequestIdGivesTheSameJob) {
+  const auto first = store_->submit(job("r1"), kT0);
+  const auto again = store_->submit(job("r1"), kT0 + 5);
+  EXPECT_TRUE(first.created);
+  EXPECT_FALSE(again.created);
+  EXPECT_EQ(first.job.id(), again.job.id());
+  EXPECT_EQ(store_->list({}, 100, 0).jobs.size(), 1u);
+}
+
+TEST_F(StoreTest, RequestIdReusedWithAnotherCaseIsAConflict) {
+  store_->submit(job("r1", "name: \"a\""), kT0);
+  try {
+    store_->submit(job("r1", "name: \"b\""), kT0);
+    FAIL() << "expected a conflict";
+  } catch (const JobError& e) {
+    EXPECT_EQ(e.kind(), JobError::Kind::kRequestConflict);
+    EXPECT_NE(std::string(e.what()).find("r1"), std::string::npos);
+  }
+  EXPECT_EQ(store_->list({}, 100, 0).jobs.size(), 1u);
+}
+
+TEST_F(StoreTest, ClaimsOldestFirstAndEmptyQueueGivesNothing) {
+  const auto a = submit("a");
+  const auto b = submit("b");
+  EXPECT_EQ(claim(kT0).job_id(), "job-" + std::to_string(a));
+  EXPECT_EQ(claim(kT0).job_id(), "job-" + std::to_string(b));
+  EXPECT_FALSE(store_->claim(ClaimInfo{"p", "h", 1}, kT0).has_value());
+}
+
+TEST_F(StoreTest, ExpiredLeaseRequeuesWithCheckpointAndFencesTheOldAttempt) {
+  const auto id = submit("a");
+  const auto c1 = claim(kT0);
+  EXPECT_EQ(c1.attempt(), 1);
+  EXPECT_TRUE(c1.resume_from().empty());
+  const std::string cp = c1.output_dir() + "/checkpoints/ckpt_10.h5";
+  auto r = report_for(c1);
+  r.add_checkpoints()->set_path(cp);
+  r.mutable_checkpoints(0)->set_step(10);
+  store_->report(r, kT0 + 500);  // renews the lease to kT0 + 1500
+
+  EXPECT_EQ(store_->expire_leases(kT0 + 1400), 0);
+  EXPECT_EQ(store_->expire_leases(kT0 + 1600), 1);
+  const auto j = store_->get(id, false);
+  EXPECT_EQ(j.state(), v1::JOB_STATE_QUEUED);
+  EXPECT_NE(j.reason().find("step 10"), std::string::npos) << j.reason();
+  ASSERT_EQ(j.attempts_size(), 1);
+  EXPECT_EQ(j.attempts(0).outcome(), v1::ATTEMPT_LEASE_EXPIRED);
+
+  const auto c2 = claim(kT0 + 1700, "pool-b");
+  EXPECT_EQ(c2.attempt(), 2);
+  EXPECT_EQ(c2.resume_from(), cp);
+  EXPECT_EQ(c2.previous_result(), c1.output_dir() + "/result.h5");
+
+  // The first pool comes back: everything it says is refused.
+  try {
+    store_->report(report_for(c1), kT0 + 1800);
+    FAIL() << "a stale report was accepted";
+  } catch (const JobError& e) {
+    EXPECT_EQ(e.kind(), JobError::Kind::kStaleAttempt);
+  }
+  try {
+    store_->finish(finish_for(c1, v1::ATTEMPT_COMPLETED), kT0 + 1800);
+    FAIL() << "a stale finish was accepted";
+  } catch (const JobError& e) {
+    EXPECT_EQ(e.kind(), JobError::Kind::kStaleAttempt);
+  }
+  EXPECT_EQ(store_->get(id, false).state(), v1::JOB_STATE_RUNNING);
+  EXPECT_EQ(store_->finish(finish_for(c2, v1::ATTEMPT_COMPLETED), kT0 + 1900),
+            v1::JOB_STATE_SUCCEEDED);
+}
+
+TEST_F(StoreTest, FinishIsIdempotentForTheSameAttempt) {
+  submit("a");
+  const auto c = claim(kT0);
+  EXPECT_EQ(store_->finish(finish_for(c, v1::ATTEMPT_COMPLETED), kT0 + 10),
+            v1::JOB_STATE_SUCCEEDED);
+  const auto events = store_->events_after(1, 0, 100).size();
+  EXPECT_EQ(store_->finish(finish_for(c, v1::ATTEMPT_COMPLETED), kT0 + 20),
+            v1::JOB_STATE_SUCCEEDED);
+  EXPECT_EQ(store_->events_after(1, 0, 100).size(), events) << "a retried Finish added events";
+  EXPECT_THROW(store_->finish(finish_for(c, v1::ATTEMPT_FAILED), kT0 + 30), JobError);
+}
+
+TEST_F(StoreTest, ACheckpointReportedTwiceIsOneEvent) {
+  const auto id = submit("a");
+  const auto c = claim(kT0);
+  auto r = report_for(c);
+  r.add_checkpoints()->set_path(c.output_dir() + "/checkpoints/ckpt_5.h5");
+  store_->report(r, kT0 + 1);
+  auto f = finish_for(c, v1::ATTEMPT_COMPLETED);
+  *f.mutable_checkpoint() = r.checkpoints(0);  // Finish repeats the newest checkpoint
+  store_->finish(f, kT0 + 2);
+  int checkpoints = 0;
+  for (const auto& e : store_->events_after(id, 0, 100)) checkpoints += e.has_checkpoint();
+  EXPECT_EQ(checkpoints, 1);
+}
+
+TEST_F(StoreTest, InterruptedAttemptGoesBackToTheQueueAtOnce) {
+  const auto id = submit("a");
+  const auto c = claim(kT0);
+  auto f = finish_for(c, v1::ATTEMPT_INTERRUPTED);
+  f.mutable_checkpoint()->set_path(c.output_dir() + "/checkpoints/ckpt_7.h5");
+  f.mutable_checkpoint()->set_step(7);
+  EXPECT_EQ(store_->finish(f, kT0 + 10), v1::JOB_STATE_QUEUED);
+  EXPECT_EQ(claim(kT0 + 20).resume_from(), c.output_dir() + "/checkpoints/ckpt_7.h5");
+  EXPECT_EQ(store_->get(id, false).attempts_size(), 2);
+}
+
+TEST_F(StoreTest, CancelIsIdempotentAndEndsQueuedJobsAtOnce) {
+  const auto running = submit("a");
+  const auto queued = submit("b");
+  const auto c = claim(kT0);  // the oldest: `running`
+
+  const auto j1 = store_->cancel(queued, "", kT0 + 1);
+  EXPECT_EQ(j1.state(), v1::JOB_STATE_CANCELLED);
+  EXPECT_FALSE(j1.reason().empty());
+  const auto events = store_->events_after(queued, 0, 100).size();
+  EXPECT_EQ(store_->cancel(queued, "", kT0 + 2).state(), v1::JOB_STATE_CANCELLED);
+  EXPECT_EQ(store_->events_after(queued, 0, 100).size(), events);
+
+  const auto j2 = store_->cancel(running, "user", kT0 + 3);
+  EXPECT_EQ(j2.state(), v1::JOB_STATE_RUNNING);
+  EXPECT_TRUE(j2.cancel_requested());
+  store_->cancel(running, "user", kT0 + 4);
+  EXPECT_TRUE(store_->report(report_for(c), kT0 + 5).cancel_requested());
+  EXPECT_EQ(store_->finish(finish_for(c, v1::ATTEMPT_CANCELLED), kT0 + 6), v1::JOB_STATE_CANCELLED);
+  int cancel_events = 0;
+  for (const auto& e : store_->events_after(running, 0, 100))
+    cancel_events += e.has_cancel_requested();
+  EXPECT_EQ(cancel_events, 1);
+}
+
+TEST_F(StoreTest, LostTooOftenFailsWithAReason) {
+  open(/*max_lost=*/2);
+  const auto id = submit("a");
+  claim(kT0);
+  store_->expire_leases(kT0 + 2 * kLeaseMs);
+  claim(kT0 + 3 * kLeaseMs);
+  store_->expire_leases(kT0 + 5 * kLeaseMs);
+  const auto j = store_->get(id, false);
+  EXPECT_EQ(j.state(), v1::JOB_STATE_FAILED);
+  EXPECT_NE(j.reason().find("2 times"), std::string::npos) << j.reason();
+}
+
+TEST_F(StoreTest, EventsAreNumberedWithoutGapsAndAppendOnly) {
+  const auto id = submit("a");
+  const auto c = claim(kT0);
+  auto r = report_for(c);
+  r.mutable_progress()->set_step(5);
+  store_->report(r, kT0 + 1);
+  store_->finish(finish_for(c, v1::ATTEMPT_COMPLETED), kT0 + 2);
+  const auto events = store_->events_after(id, 0, 100);
+  ASSERT_EQ(events.size(), 4u);  // QUEUED, RUNNING, progress, SUCCEEDED
+  for (size_t i = 0; i < events.size(); ++i)
+    EXPECT_EQ(events[i].sequence(), static_cast<int>(i + 1));
+  EXPECT_EQ(store_->events_after(id, 2, 100).front().sequence(), 3);
+  EXPECT_EQ(events.back().state_change().state(), v1::JOB_STATE_SUCCEEDED);
+
+  store_.reset();
+  Database raw(db());
+  EXPECT_THROW(raw.exec("UPDATE events SET kind = 'x'"), SqliteError);
+  EXPECT_THROW(raw.exec("DELETE FROM events"), SqliteError);
+}
+
+TEST_F(StoreTest, TerminalStatesNeedAReason) {
+  submit("a");
+  store_.reset();
+  Database raw(db());
+  EXPECT_THROW(raw.exec("UPDATE jobs SET state = 'FAILED', reason = ''"), SqliteError);
+}
+
+TEST_F(StoreTest, StateSurvivesReopeningAndLeasesAreRenewed) {
+  const auto id = submit("a");
+  claim(kT0);
+  open();
+  store_->renew_all_leases(kT0 + 10 * kLeaseMs);
+  EXPECT_EQ(store_->expire_leases(kT0 + 10 * kLeaseMs + kLeaseMs / 2), 0);
+  EXPECT_EQ(store_->get(id, false).state(), v1::JOB_STATE_RUNNING);
+}
+
+TEST_F(StoreTest, RefusesADatabaseFromANewerRelease) {
+  store_.reset();
+  {
+    Database raw(db());
+    raw.exec("PRAGMA user_version = " + std::to_string(current_schema_version() + 1));
+  }
+  EXPECT_THROW(open(), SqliteError);
+}
+
+TEST_F(StoreTest, ListsNewestFirstInPagesAndByState) {
+  for (int i = 0; i < 5; ++i) submit("r" + std::to_string(i));
+  claim(kT0);
+  const auto p1 = store_->list({}, 2, 0);
+  ASSERT_EQ(p1.jobs.size(), 2u);
+  EXPECT_EQ(p1.jobs[0].id(), "job-5");
+  const auto p2 = store_->list({}, 2, p1.next_before);
+  EXPECT_EQ(p2.jobs[0].id(), "job-3");
+  const auto p3 = store_->list({}, 2, p2.next_before);
+  EXPECT_EQ(p3.jobs.size(), 1u);
+  EXPECT_EQ(p3.next_before, 0);
+  const auto running = store_->list({v1::JOB_STATE_RUNNING}, 10, 0);
+  ASSERT_EQ(running.jobs.size(), 1u);
+  EXPECT_EQ(running.jobs[0].id(), "job-1");
+}
+
+}  // namespace
+}  // namespace sph::server::store

@@ -1,0 +1,73 @@
+#pragma once
+// Rank 0's reporting thread for one attempt. The solver's callbacks only store what they have
+// (progress, new checkpoints) and read flags; this thread makes the Report calls, so a slow
+// or absent server never stalls a time step. Each Report renews the lease and brings back a
+// cancel request; an ABORTED reply means the lease was lost and the attempt must stop.
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "solver/run/run_case.h"
+#include "sph/v1/service.pb.h"
+#include "worker/pool/server_link.h"
+
+namespace sph::worker::pool {
+
+v1::ProgressInfo to_proto(const Progress& p);
+
+class AttemptReporter {
+ public:
+  // stall_seconds > 0: stop renewing the lease when the solver has not called back for that
+  // long (a hung run must not hold its job forever; the server then gives it to another pool).
+  AttemptReporter(ServerLink& link, std::string job_id, int attempt, double interval_seconds,
+                  double stall_seconds);
+  ~AttemptReporter();
+  AttemptReporter(const AttemptReporter&) = delete;
+  AttemptReporter& operator=(const AttemptReporter&) = delete;
+
+  // Solver callbacks (rank 0's solver thread).
+  void on_progress(const Progress& p);
+  void on_checkpoint(const std::string& path, std::int64_t step, double time);
+  // Polled by the solver once per step; doubles as its heartbeat.
+  bool should_stop();
+
+  // Stops the thread after a last report of anything still pending.
+  void stop();
+
+  bool lost() const { return lost_.load(); }
+  bool cancel_requested() const { return cancel_requested_.load(); }
+  std::optional<v1::ProgressInfo> last_progress() const;
+  std::optional<v1::Checkpoint> last_checkpoint() const;
+
+ private:
+  void run();
+  void send();  // one Report with whatever is pending
+
+  ServerLink& link_;
+  const std::string job_id_;
+  const int attempt_;
+  const std::chrono::milliseconds interval_;
+  const std::chrono::milliseconds stall_;
+  std::atomic<std::chrono::steady_clock::rep> heartbeat_;
+  bool stalled_ = false;  // only the reporting thread uses it
+  mutable std::mutex mu_;
+  std::condition_variable cv_;
+  bool stop_ = false;
+  bool urgent_ = false;  // a checkpoint waits to be reported
+  std::optional<v1::ProgressInfo> progress_;
+  bool progress_sent_ = true;
+  std::vector<v1::Checkpoint> pending_checkpoints_;
+  std::optional<v1::Checkpoint> last_checkpoint_;
+  std::atomic<bool> cancel_requested_{false};
+  std::atomic<bool> lost_{false};
+  bool server_away_ = false;  // only the reporting thread uses it
+  std::thread thread_;
+};
+
+}  // namespace sph::worker::pool
