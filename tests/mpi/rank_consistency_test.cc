@@ -143,7 +143,8 @@ TEST(RankConsistency, FallingDiskWithContact) {
 }
 
 TEST(RankConsistency, DamBreakRebalances) {
-  // After the collapse the particles pile up at the far wall; the decomposition follows.
+  // After the collapse the particles pile up at the far wall; the decomposition follows. The
+  // balanced quantity is the work (fluid particles weigh ten wall particles).
   auto c = test::load_case("dambreak_2d");  // dx = 0.02: 2500 fluid particles
   c.mutable_time()->set_end_time(2.5);
   c.mutable_output()->set_interval(0);
@@ -156,7 +157,7 @@ TEST(RankConsistency, DamBreakRebalances) {
   double worst_late = 0;
   for (std::size_t k = 0; k < t.size(); ++k)
     if (t[k] > 1.5) worst_late = std::max(worst_late, imb[k]);
-  std::printf("Dam break on 4 ranks: largest rank / mean after t = 1.5: %.3f (final %.3f)\n",
+  std::printf("Dam break on 4 ranks: largest rank work / mean work after t = 1.5: %.3f (final %.3f)\n",
               worst_late, imb.back());
   EXPECT_LE(worst_late, 1.10);
 }
