@@ -412,8 +412,10 @@ class Validator {
     const auto& k = c_.contact();
     positive(k.stiffness(), "contact.stiffness");
     non_negative(k.damping(), "contact.damping");
-    if (k.has_friction())
-      error("contact.friction", "not implemented yet: tangential (Coulomb) friction");
+    if (k.has_friction()) {
+      non_negative(k.friction().coefficient(), "contact.friction.coefficient");
+      positive(k.friction().tangential_stiffness(), "contact.friction.tangential_stiffness");
+    }
     if (c_.bodies_size() == 0)
       error("contact", "contact is configured but the case has no rigid bodies");
   }

@@ -1,5 +1,8 @@
 #include "solver/bodies/spring_dashpot_contact.h"
 
+#include <cstring>
+#include <set>
+
 namespace sph {
 
 template <int D>
@@ -14,7 +17,7 @@ void SpringDashpotContact<D>::snapshot_step_start() {
 }
 
 template <int D>
-void SpringDashpotContact<D>::evaluate(const NeighborList<D>& nl, const Comm& comm) {
+void SpringDashpotContact<D>::evaluate(const NeighborList<D>& nl, const Comm& comm, double h) {
   auto& bs = bodies_.bodies();
   const std::size_t nb = bs.size();
   std::vector<Mat<D>> R(nb);
@@ -37,6 +40,8 @@ void SpringDashpotContact<D>::evaluate(const NeighborList<D>& nl, const Comm& co
   const auto sums = exact_sum(
       nb * per,
       [&](auto emit) {
+        // exact_sum runs this twice; both passes read history_ and build the same map.
+        next_history_.clear();
         for (std::size_t i = 0; i < s_.owned(); ++i) {
           if (s_.kind[i] != Kind::kRigid || nl.contacts_begin(i) == nl.contacts_end(i)) continue;
           Vec<D> xi, vi;
@@ -50,10 +55,26 @@ void SpringDashpotContact<D>::evaluate(const NeighborList<D>& nl, const Comm& co
             const double dist = d.norm();
             if (dist >= dx_ || dist == 0.0) continue;
             const Vec<D> e = d / dist;
-            const double fn = k_ * (dist - dx_) + d_ * e.dot(vi - vj);  // eq. 27
+            const Vec<D> vij = vi - vj;
+            const double fn = k_ * (dist - dx_) + d_ * e.dot(vij);  // eq. 27
             if (fn < 0.0) {
               f -= fn * e;
               touching += 1;
+              if (friction()) {
+                const PairKey key{s_.id[i], s_.id[*jp]};
+                auto it = history_.find(key);
+                Vec<D> delta = it == history_.end() ? Vec<D>::Zero() : it->second;
+                delta -= delta.dot(e) * e;             // into the current tangent plane
+                delta += h * (vij - vij.dot(e) * e);   // tangential relative motion
+                Vec<D> ft = -kt_ * delta;
+                const double cap = mu_ * -fn, mag = ft.norm();
+                if (mag > cap) {  // sliding: Coulomb limit
+                  ft *= cap / mag;
+                  delta = -ft / kt_;
+                }
+                f += ft;
+                next_history_[key] = delta;
+              }
             }
           }
           const std::size_t k = static_cast<std::size_t>(body[i]);
@@ -64,6 +85,7 @@ void SpringDashpotContact<D>::evaluate(const NeighborList<D>& nl, const Comm& co
         }
       },
       comm);
+  if (friction() && h > 0) history_.swap(next_history_);
   for (std::size_t k = 0; k < nb; ++k) {
     for (int a = 0; a < D; ++a) bs[k].contact_force[a] = sums[k * per + static_cast<size_t>(a)];
     for (int a = 0; a < A; ++a)
@@ -94,8 +116,87 @@ void SpringDashpotContact<D>::drift(const NeighborList<D>& nl, double dt, int su
   for (int k = 0; k < substeps; ++k) {
     contact_kick(0.5 * h);
     bodies_.drift(h, t_end - dt + (k + 1) * h);
-    evaluate(nl, comm);
+    evaluate(nl, comm, h);
     contact_kick(0.5 * h);
+  }
+}
+
+template <int D>
+void SpringDashpotContact<D>::migrate_history(Halo<D>& halo) {
+  if (!friction()) return;
+  const auto& moved = halo.migrated_ids();
+  std::map<ParticleId, std::size_t> dest;
+  for (std::size_t r = 0; r < moved.size(); ++r)
+    for (const ParticleId id : moved[r]) dest[id] = r;
+  std::vector<std::vector<std::byte>> send(moved.size());
+  for (auto it = history_.begin(); it != history_.end();) {
+    const auto d = dest.find(it->first.first);
+    if (d == dest.end()) {
+      ++it;
+      continue;
+    }
+    auto& buf = send[d->second];
+    const std::size_t at = buf.size();
+    buf.resize(at + 2 * sizeof(ParticleId) + sizeof(Vec<D>));
+    std::memcpy(buf.data() + at, &it->first.first, sizeof(ParticleId));
+    std::memcpy(buf.data() + at + sizeof(ParticleId), &it->first.second, sizeof(ParticleId));
+    std::memcpy(buf.data() + at + 2 * sizeof(ParticleId), &it->second, sizeof(Vec<D>));
+    it = history_.erase(it);
+  }
+  const auto got = halo.exchange_bytes(send);
+  const std::size_t rec = 2 * sizeof(ParticleId) + sizeof(Vec<D>);
+  for (const auto& buf : got)
+    for (std::size_t at = 0; at + rec <= buf.size(); at += rec) {
+      PairKey key;
+      Vec<D> delta;
+      std::memcpy(&key.first, buf.data() + at, sizeof(ParticleId));
+      std::memcpy(&key.second, buf.data() + at + sizeof(ParticleId), sizeof(ParticleId));
+      std::memcpy(static_cast<void*>(&delta), buf.data() + at + 2 * sizeof(ParticleId), sizeof(Vec<D>));
+      history_[key] = delta;
+    }
+}
+
+template <int D>
+void SpringDashpotContact<D>::prune_history() {
+  std::set<ParticleId> owned;
+  for (std::size_t i = 0; i < s_.owned(); ++i) owned.insert(s_.id[i]);
+  for (auto it = history_.begin(); it != history_.end();)
+    it = owned.count(it->first.first) ? std::next(it) : history_.erase(it);
+}
+
+template <int D>
+void SpringDashpotContact<D>::save(std::map<std::string, double>& state, const Comm& comm) const {
+  if (!friction()) return;
+  const std::size_t rec = 2 * sizeof(ParticleId) + sizeof(Vec<D>);
+  std::string mine(history_.size() * rec, '\0');
+  std::size_t at = 0;
+  for (const auto& [key, delta] : history_) {
+    std::memcpy(mine.data() + at, &key.first, sizeof(ParticleId));
+    std::memcpy(mine.data() + at + sizeof(ParticleId), &key.second, sizeof(ParticleId));
+    std::memcpy(mine.data() + at + 2 * sizeof(ParticleId), &delta, sizeof(Vec<D>));
+    at += rec;
+  }
+  const std::string all = comm.allgather(mine);
+  for (std::size_t p = 0; p + rec <= all.size(); p += rec) {
+    ParticleId r, j;
+    Vec<D> delta;
+    std::memcpy(&r, all.data() + p, sizeof(ParticleId));
+    std::memcpy(&j, all.data() + p + sizeof(ParticleId), sizeof(ParticleId));
+    std::memcpy(static_cast<void*>(&delta), all.data() + p + 2 * sizeof(ParticleId), sizeof(Vec<D>));
+    const std::string k = "friction." + std::to_string(r) + "." + std::to_string(j) + ".";
+    for (int a = 0; a < D; ++a) state[k + std::to_string(a)] = delta[a];
+  }
+}
+
+template <int D>
+void SpringDashpotContact<D>::load(const std::map<std::string, double>& state) {
+  history_.clear();
+  for (auto it = state.lower_bound("friction."); it != state.end() && it->first.rfind("friction.", 0) == 0; ++it) {
+    // friction.<id_r>.<id_j>.<component>
+    const std::string& k = it->first;
+    const std::size_t a = k.find('.', 9), b = k.find('.', a + 1);
+    const PairKey key{std::stoll(k.substr(9, a - 9)), std::stoll(k.substr(a + 1, b - a - 1))};
+    history_[key][std::stoi(k.substr(b + 1))] = it->second;
   }
 }
 

@@ -1,8 +1,13 @@
 #pragma once
-// Frictionless spring-dashpot contact between particles of different rigid bodies and
-// between rigid particles and wall particles (Fuchs 2021 eq. 27, Remark 17):
+// Spring-dashpot contact between particles of different rigid bodies and between rigid
+// particles and wall particles (Fuchs 2021 eq. 27, Remark 17):
 //   f_rr' = -min(0, k_c (d - dx) + d_c e . u_rr') e    for d = |x_r - x_r'| < dx,
-// with e = (x_r - x_r')/d; the min is the tension cut-off.
+// with e = (x_r - x_r')/d; the min is the tension cut-off. Optional Coulomb friction with a
+// tangential spring (Cundall & Strack 1979): each touching pair keeps its tangential
+// displacement delta (projected into the current tangent plane and grown by the tangential
+// relative velocity), f_t = -k_t delta capped at mu |f_n|, and on sliding delta is reset to
+// the capped force. The history of a pair lives on the rank owning its first particle and
+// moves with it (migrate_history) and into checkpoints (save/load).
 //
 // It runs as the inner level of the bodies' r-RESPA integration (see rigid_bodies.h): during
 // the substeps of one fluid step the rigid particles (owned and ghost) are moved with their
@@ -11,7 +16,10 @@
 // Walls keep their positions of the start of the step.
 #include <vector>
 
+#include <map>
+
 #include "solver/bodies/rigid_bodies.h"
+#include "solver/parallel/halo.h"
 
 namespace sph {
 
@@ -20,13 +28,22 @@ class SpringDashpotContact {
  public:
   static constexpr const char* kName = "contact";
   SpringDashpotContact(ParticleStore<D>& s, RigidBodies<D>& bodies, double stiffness,
-                       double damping, double dx, bool walls)
-      : s_(s), bodies_(bodies), k_(stiffness), d_(damping), dx_(dx), walls_(walls) {}
+                       double damping, double dx, bool walls, double friction = 0,
+                       double tangential_stiffness = 0)
+      : s_(s),
+        bodies_(bodies),
+        k_(stiffness),
+        d_(damping),
+        dx_(dx),
+        walls_(walls),
+        mu_(friction),
+        kt_(tangential_stiffness) {}
 
-  // Fuchs 2021 eq. 41: 0.22 sqrt(m_r/k_c) for the lightest rigid particle.
+  // Fuchs 2021 eq. 41: 0.22 sqrt(m_r/k) for the lightest rigid particle and the stiffer spring.
   double time_step(double min_particle_mass) const {
-    return 0.22 * std::sqrt(min_particle_mass / k_);
+    return 0.22 * std::sqrt(min_particle_mass / std::max(k_, kt_));
   }
+  bool friction() const { return kt_ > 0; }
   // Candidates are collected up to this distance (dx plus the motion within a step).
   double candidate_range() const { return 1.5 * dx_; }
   bool with_walls() const { return walls_; }
@@ -35,16 +52,27 @@ class SpringDashpotContact {
   // (free bodies) and moves prescribed ones. Collective.
   void drift(const NeighborList<D>& nl, double dt, int substeps, double t_end, const Comm& comm);
   // Contact forces for the current body states, reduced into the bodies (contact_force,
-  // contact_torque, contacts). Collective.
-  void evaluate(const NeighborList<D>& nl, const Comm& comm);
+  // contact_torque, contacts). Collective. h > 0 advances the friction history by h.
+  void evaluate(const NeighborList<D>& nl, const Comm& comm, double h = 0);
+  // Sends the friction history of particles that migrated to their new ranks. Collective.
+  void migrate_history(Halo<D>& halo);
+  // Keeps only the history of owned particles (after a resume gave every rank all of it).
+  void prune_history();
+  // Collective: every rank adds every rank's entries (the checkpoint attributes are written
+  // collectively, so all ranks must pass the same state).
+  void save(std::map<std::string, double>& state, const Comm& comm) const;
+  void load(const std::map<std::string, double>& state);
 
  private:
   void snapshot_step_start();
+  using PairKey = std::pair<ParticleId, ParticleId>;
+  std::map<PairKey, Vec<D>> history_, next_history_;
 
   ParticleStore<D>& s_;
   RigidBodies<D>& bodies_;
   double k_, d_, dx_;
   bool walls_;
+  double mu_, kt_;
   std::vector<Vec<D>> com0_;
   std::vector<Mat<D>> R0_;
 };

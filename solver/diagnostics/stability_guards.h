@@ -15,7 +15,7 @@
 namespace sph {
 
 struct GuardSettings {
-  double max_density_deviation = 0.2;
+  double max_density_deviation = 0.5;
   double min_dt_fraction = 1e-3;
   double max_mach = 1.0;
 };

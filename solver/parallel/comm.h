@@ -58,6 +58,20 @@ class Comm {
     MPI_Bcast(s.data(), static_cast<int>(n), MPI_CHAR, 0, comm_);
     return s;
   }
+  // Every rank's bytes concatenated in rank order, on every rank.
+  std::string allgather(const std::string& mine) const {
+    int n = static_cast<int>(mine.size());
+    std::vector<int> sizes(static_cast<size_t>(size_)), displ(static_cast<size_t>(size_), 0);
+    MPI_Allgather(&n, 1, MPI_INT, sizes.data(), 1, MPI_INT, comm_);
+    int total = 0;
+    for (int r = 0; r < size_; ++r) {
+      displ[static_cast<size_t>(r)] = total;
+      total += sizes[static_cast<size_t>(r)];
+    }
+    std::string out(static_cast<size_t>(total), '\0');
+    MPI_Allgatherv(mine.data(), n, MPI_CHAR, out.data(), sizes.data(), displ.data(), MPI_CHAR, comm_);
+    return out;
+  }
   // The first non-empty string in rank order, on every rank.
   std::string first_non_empty(const std::string& s) const {
     int mine = s.empty() ? size_ : rank_;

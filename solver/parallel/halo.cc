@@ -163,6 +163,9 @@ void Halo<D>::migrate(ParticleStore<D>& s) {
     else
       send_idx_[static_cast<size_t>(owner)].push_back(static_cast<std::uint32_t>(i));
   }
+  migrated_ids_.assign(static_cast<size_t>(P), {});
+  for (int r = 0; r < P; ++r)
+    for (const std::uint32_t i : send_idx_[static_cast<size_t>(r)]) migrated_ids_[static_cast<size_t>(r)].push_back(s.id[i]);
   std::vector<ColumnBase*> cols;
   for (const auto& c : s.columns())
     if (c->persistent()) cols.push_back(c.get());
@@ -230,6 +233,18 @@ void Halo<D>::update(ParticleStore<D>& s, std::initializer_list<ColumnBase*> lis
   pack(s, cols, false);
   exchange();
   unpack(cols, s.owned());
+}
+
+template <int D>
+std::vector<std::vector<std::byte>> Halo<D>::exchange_bytes(const std::vector<std::vector<std::byte>>& send) {
+  send_buf_ = send;
+  exchange();
+  std::vector<std::vector<std::byte>> out(static_cast<size_t>(comm_.size()));
+  for (int r = 0; r < comm_.size(); ++r) {
+    const std::byte* b = recv_buf_.data() + recv_displ_[static_cast<size_t>(r)];
+    out[static_cast<size_t>(r)].assign(b, b + recv_bytes_[static_cast<size_t>(r)]);
+  }
+  return out;
 }
 
 template class Halo<2>;

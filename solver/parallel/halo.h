@@ -39,6 +39,12 @@ class Halo {
   // Refreshes the listed columns of the ghosts made by the last build_ghosts().
   void update(ParticleStore<D>& s, std::initializer_list<ColumnBase*> cols);
 
+  // Ids of the particles the last migrate() sent away, per destination rank (state kept by
+  // units outside the particle columns, such as contact histories, follows them).
+  const std::vector<std::vector<ParticleId>>& migrated_ids() const { return migrated_ids_; }
+  // Exchanges per-rank byte buffers (send[r] to rank r); returns what arrived, by source.
+  std::vector<std::vector<std::byte>> exchange_bytes(const std::vector<std::vector<std::byte>>& send);
+
   // Seconds spent in MPI exchanges since the last call (for the communication share).
   double take_comm_seconds() {
     const double t = comm_seconds_;
@@ -67,6 +73,7 @@ class Halo {
   std::vector<std::vector<std::byte>> send_buf_;
   std::vector<std::byte> recv_buf_;
   std::vector<int> recv_bytes_, recv_displ_;
+  std::vector<std::vector<ParticleId>> migrated_ids_;
   double comm_seconds_ = 0;
 };
 

@@ -99,6 +99,7 @@ class Simulation {
   void apply_wall_condition();
   void compute_forces();
   void move_bodies(double dt);
+  void migrate();
   void build_transport_units();
   void transport_scalars(double dt);
   void set_wall_scalars(double t);

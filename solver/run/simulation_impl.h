@@ -122,8 +122,8 @@ void Simulation<D, K>::build_units() {
     }
     if (c_.has_contact()) {
       const auto& k = c_.contact();
-      contact_.emplace(s_, *bodies_, k.stiffness(), k.damping(), dx_,
-                       !k.has_with_walls() || k.with_walls());
+      contact_.emplace(s_, *bodies_, k.stiffness(), k.damping(), dx_, !k.has_with_walls() || k.with_walls(),
+                       k.friction().coefficient(), k.has_friction() ? k.friction().tangential_stiffness() : 0.0);
       units_.push_back(SpringDashpotContact<D>::kName);
     }
   }
@@ -410,7 +410,7 @@ template <int D, class K>
 void Simulation<D, K>::exchange_and_search() {
   {
     Timer tm(timer("halo_exchange"));
-    halo_.migrate(s_);
+    migrate();
     // Keep owned particles in cell order so neighbours are close in memory.
     if (step_ % 25 == 0) s_.reorder_owned(owned_cell_order(s_, grid_, halo_.my_box()));
     halo_.build_ghosts(s_);
@@ -478,6 +478,13 @@ void Simulation<D, K>::compute_forces() {
     forces_->run_coupling(s_, nl_, kernel_, in);
     bodies_->reduce_fluid_forces(comm_);
   }
+}
+
+// Particles to their owners, with the contact history that belongs to them.
+template <int D, class K>
+void Simulation<D, K>::migrate() {
+  halo_.migrate(s_);
+  if (contact_) contact_->migrate_history(halo_);
 }
 
 template <int D, class K>
@@ -722,6 +729,7 @@ std::string Simulation<D, K>::write_checkpoint_now() {
                                          {"next_series", next_series_},
                                          {"contact_possible", contact_possible_ ? 1.0 : 0.0}};
   if (bodies_) bodies_->save(state);
+  if (contact_) contact_->save(state, comm_);
   write_checkpoint(comm_, path, s_, state);
   if (comm_.root()) {
     // Keep the two newest checkpoints.
@@ -810,7 +818,7 @@ void Simulation<D, K>::maybe_rebalance() {
     Timer tm(timer("halo_exchange"));
     s_.drop_ghosts();
     decompose_by_histogram();
-    halo_.migrate(s_);
+    migrate();
     imbalance_ = imbalance();
   }
 }
@@ -828,7 +836,7 @@ void Simulation<D, K>::start() {
   last_checkpoint_wall_ = wall_start_;
   if (opt_.resume_from.empty()) {
     build_scene();
-    halo_.migrate(s_);
+    migrate();
     global_particles_ = comm_.sum(static_cast<std::int64_t>(s_.owned()));
     if (bodies_) {
       std::vector<Vec<D>> v0;
@@ -868,8 +876,10 @@ void Simulation<D, K>::start() {
     next_series_ = state.at("next_series");
     contact_possible_ = state.count("contact_possible") && state.at("contact_possible") > 0;
     if (bodies_) bodies_->load(state);
+    if (contact_) contact_->load(state);  // every rank reads all pairs ...
     decompose_by_histogram();
-    halo_.migrate(s_);
+    migrate();
+    if (contact_) contact_->prune_history();  // ... and keeps those of its particles
     global_particles_ = comm_.sum(static_cast<std::int64_t>(s_.owned()));
     auto meta = metadata("running");
     meta["resumed_from"] = opt_.resume_from;

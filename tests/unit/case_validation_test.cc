@@ -111,10 +111,12 @@ TEST(CaseValidation, DimensionSpecificShapes) {
 TEST(CaseValidation, NotImplementedUnitsAreRejectedNotIgnored) {
   auto errs = errors_of(R"(phase_transitions { solid_material: "s" })");
   EXPECT_TRUE(has_error(errs, "phase_transitions[0]", "not implemented yet")) << dump(errs);
+  errs = errors_of(R"(open_boundaries { name: "in" })");
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0]", "not implemented yet")) << dump(errs);
   errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
 bodies { name: "b" material: "s" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } }
 contact { stiffness: 1 friction { coefficient: 0.3 } })");
-  EXPECT_TRUE(has_error(errs, "contact.friction", "not implemented yet")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "contact.friction.tangential_stiffness", "must be > 0")) << dump(errs);
   errs = errors_of(R"(open_boundaries { name: "in" })");
   EXPECT_TRUE(has_error(errs, "open_boundaries[0]", "not implemented yet")) << dump(errs);
 }

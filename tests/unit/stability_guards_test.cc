@@ -54,7 +54,7 @@ TEST(StabilityGuards, NonFinite) {
 
 TEST(StabilityGuards, DensityDeviation) {
   Fixture f;
-  f.s.rho[2] = 1.3;
+  f.s.rho[2] = 1.6;
   const std::string v = f.scan();
   EXPECT_NE(v.find("guards.max_density_deviation"), std::string::npos) << v;
   EXPECT_NE(v.find("id 102"), std::string::npos) << v;
