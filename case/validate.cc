@@ -455,6 +455,11 @@ class Validator {
     if (t.max_steps() < 0) error("time.max_steps", "must be >= 0");
     const auto& o = c_.output();
     non_negative(o.interval(), "output.interval");
+    // Every snapshot time is stored up front and each snapshot is a full particle dump.
+    constexpr double kMaxSnapshots = 100000;
+    if (o.interval() > 0 && t.end_time() > 0 && t.end_time() / o.interval() > kMaxSnapshots)
+      error("output.interval", "gives " + num(t.end_time() / o.interval()) +
+                                   " snapshots (end_time / interval); at most 100000 are allowed");
     non_negative(o.series_interval(), "output.series_interval");
     non_negative(o.checkpoint_wall_interval(), "output.checkpoint_wall_interval");
     for (int i = 0; i < o.times_size(); ++i)

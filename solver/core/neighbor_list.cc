@@ -25,7 +25,7 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
   const ParticleId* id = s.id.data();
   const std::size_t owned_n = s.owned();
   for (std::size_t i = 0; i < n; ++i) {
-    const ICoord<D> c = grid.coord(x[i]);
+    const ICoord<D> c = grid.bin(x[i]);
     // Owned particles belong to the interior cells; clamping keeps a corrupted position
     // (reported by the stability guard at the end of the step) from indexing outside.
     const int margin = i < owned_n ? 1 : 0;
@@ -132,7 +132,7 @@ std::vector<std::uint32_t> owned_cell_order(const ParticleStore<D>& s, const Cel
                                             const CellBox<D>& box) {
   std::vector<std::pair<std::int64_t, ParticleId>> key(s.owned());
   for (std::size_t i = 0; i < s.owned(); ++i) {
-    const ICoord<D> c = grid.coord(s.x[i]);
+    const ICoord<D> c = grid.bin(s.x[i]);
     std::int64_t lin = 0;
     for (int a = D - 1; a >= 0; --a)
       lin = lin * (box.hi[a] - box.lo[a]) +

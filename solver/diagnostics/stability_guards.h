@@ -22,9 +22,10 @@ struct GuardSettings {
 
 template <int D>
 struct GuardScan {
-  std::string violation;       // empty when all checks pass on this rank
-  double max_speed = 0;        // over owned fluid particles (for the time step)
-  double max_density_dev = 0;  // over owned fluid particles
+  std::string violation;        // empty when all checks pass on this rank
+  double max_speed = 0;         // over owned fluid particles (for the time step)
+  double max_acceleration = 0;  // over owned fluid particles (for the time step)
+  double max_density_dev = 0;   // over owned fluid particles
 };
 
 inline std::string format_vec(const double* x, int d) {
@@ -77,6 +78,7 @@ GuardScan<D> scan_particles(const ParticleStore<D>& s, const std::vector<FluidCo
       continue;
     }
     out.max_speed = std::max(out.max_speed, speed);
+    out.max_acceleration = std::max(out.max_acceleration, s.a[i].norm());
     const double dev = std::abs(s.rho[i] * f.inv_rho0 - 1.0);
     out.max_density_dev = std::max(out.max_density_dev, dev);
     if (dev > g.max_density_deviation) {

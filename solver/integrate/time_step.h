@@ -24,9 +24,14 @@ class TimeStepBound {
     if (dt > 0) constant_ = std::min(constant_, dt);
   }
   // dt for the current largest speed.
-  double dt(double u_max) const { return f_ * std::min(0.25 * h_ / (c_ + u_max), constant_); }
-  std::string limited_by(double u_max) const {
-    return 0.25 * h_ / (c_ + u_max) <= constant_ ? "acoustic" : "viscous/body force";
+  // dt for the current largest speed and largest particle acceleration. Eq. 41 bounds the
+  // body force, 0.25 sqrt(h/|b|); the same bound with the largest particle acceleration
+  // (Monaghan 1992 uses |f_i|) also catches a particle squeezed between a body and a wall,
+  // whose pressure force can exceed the body force by orders of magnitude for a few steps.
+  double dt(double u_max, double a_max = 0) const {
+    double bound = std::min(0.25 * h_ / (c_ + u_max), constant_);
+    if (a_max > 0) bound = std::min(bound, 0.25 * std::sqrt(h_ / a_max));
+    return f_ * bound;
   }
 
  private:

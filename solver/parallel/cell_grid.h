@@ -43,6 +43,16 @@ struct CellGrid {
     }
     return c;
   }
+  // The cell a particle is binned in for neighbour search: non-periodic axes clamped into
+  // [0, n), so that a wall particle on or beyond the domain's edge sits in the same cell
+  // (hence the same place in the canonical neighbour order) whether it is owned or a ghost;
+  // periodic images keep their cell outside [0, n).
+  ICoord<D> bin(const Vec<D>& x) const {
+    ICoord<D> c = coord(x);
+    for (int a = 0; a < D; ++a)
+      if (!periodic[a]) c[a] = std::clamp(c[a], 0, n[a] - 1);
+    return c;
+  }
   // Wraps periodic axes into [0, n) and clamps the others.
   ICoord<D> canonical(ICoord<D> c) const {
     for (int a = 0; a < D; ++a) {

@@ -165,7 +165,8 @@ void Halo<D>::migrate(ParticleStore<D>& s) {
   }
   migrated_ids_.assign(static_cast<size_t>(P), {});
   for (int r = 0; r < P; ++r)
-    for (const std::uint32_t i : send_idx_[static_cast<size_t>(r)]) migrated_ids_[static_cast<size_t>(r)].push_back(s.id[i]);
+    for (const std::uint32_t i : send_idx_[static_cast<size_t>(r)])
+      migrated_ids_[static_cast<size_t>(r)].push_back(s.id[i]);
   std::vector<ColumnBase*> cols;
   for (const auto& c : s.columns())
     if (c->persistent()) cols.push_back(c.get());
@@ -195,7 +196,9 @@ void Halo<D>::build_ghosts(ParticleStore<D>& s) {
   if (!targets_.empty()) {
     const CellBox<D>& mine = my_box();
     for (std::size_t i = 0; i < s.owned(); ++i) {
-      const ICoord<D> c = grid_.coord(s.x[i]);
+      // Canonical like in migrate(): a wall particle exactly on (or beyond) the domain's
+      // upper edge lies in the clamped last cell, and its neighbours on other ranks need it.
+      const ICoord<D> c = grid_.canonical(grid_.coord(s.x[i]));
       // Interior cells are needed by nobody: skip the target scan for them.
       bool interior = true;
       for (int a = 0; a < D; ++a)
@@ -236,7 +239,8 @@ void Halo<D>::update(ParticleStore<D>& s, std::initializer_list<ColumnBase*> lis
 }
 
 template <int D>
-std::vector<std::vector<std::byte>> Halo<D>::exchange_bytes(const std::vector<std::vector<std::byte>>& send) {
+std::vector<std::vector<std::byte>> Halo<D>::exchange_bytes(
+    const std::vector<std::vector<std::byte>>& send) {
   send_buf_ = send;
   exchange();
   std::vector<std::vector<std::byte>> out(static_cast<size_t>(comm_.size()));

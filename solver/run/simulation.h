@@ -115,7 +115,7 @@ class Simulation {
   void sample_bodies();
   void integrate_step(double dt);
   struct EndOfStep {
-    double max_speed = 0, max_density_dev = 0, min_contact_distance = 0;
+    double max_speed = 0, max_acceleration = 0, max_density_dev = 0, min_contact_distance = 0;
     bool violated = false, cancel = false, interrupt = false, checkpoint = false,
          out_of_time = false;
     std::string diagnosis;

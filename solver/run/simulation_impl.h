@@ -122,8 +122,9 @@ void Simulation<D, K>::build_units() {
     }
     if (c_.has_contact()) {
       const auto& k = c_.contact();
-      contact_.emplace(s_, *bodies_, k.stiffness(), k.damping(), dx_, !k.has_with_walls() || k.with_walls(),
-                       k.friction().coefficient(), k.has_friction() ? k.friction().tangential_stiffness() : 0.0);
+      contact_.emplace(s_, *bodies_, k.stiffness(), k.damping(), dx_,
+                       !k.has_with_walls() || k.with_walls(), k.friction().coefficient(),
+                       k.has_friction() ? k.friction().tangential_stiffness() : 0.0);
       units_.push_back(SpringDashpotContact<D>::kName);
     }
   }
@@ -315,13 +316,16 @@ void Simulation<D, K>::sample_scalars() {
 // particle only takes part in neighbour search and, next to fluid, the wall condition. A
 // scene is often mostly wall (a 3D tank), so balancing raw counts leaves one rank with all
 // the fluid. Integers keep the histogram sums exact.
-inline std::int64_t work_weight(Kind k) { return k == Kind::kWall ? 1 : 10; }
+inline std::int64_t work_weight(Kind k) {
+  return k == Kind::kWall ? 1 : 10;
+}
 
 template <int D, class K>
 void Simulation<D, K>::decompose_by_histogram() {
   std::vector<std::int64_t> counts(static_cast<size_t>(grid_.total()), 0);
   for (std::size_t i = 0; i < s_.owned(); ++i)
-    counts[static_cast<size_t>(grid_.linear(grid_.canonical(grid_.coord(s_.x[i]))))] += work_weight(s_.kind[i]);
+    counts[static_cast<size_t>(grid_.linear(grid_.canonical(grid_.coord(s_.x[i]))))] +=
+        work_weight(s_.kind[i]);
   comm_.sum_inplace(counts);
   halo_.set_decomposition(Decomposition<D>(grid_, comm_.size(), counts));
 }
@@ -362,8 +366,8 @@ void Simulation<D, K>::build_scene() {
   // the generation is deterministic), and all compute the same decomposition.
   std::vector<std::int64_t> counts(static_cast<size_t>(grid_.total()), 0);
   scene.for_each([&](const SceneParticle& p) {
-    counts[static_cast<size_t>(grid_.linear(grid_.canonical(grid_.coord(detail::to_vec<D>(p.x)))))] +=
-        work_weight(p.kind);
+    counts[static_cast<size_t>(
+        grid_.linear(grid_.canonical(grid_.coord(detail::to_vec<D>(p.x)))))] += work_weight(p.kind);
   });
   halo_.set_decomposition(Decomposition<D>(grid_, comm_.size(), counts));
   // Pass 2: keep the particles of this rank's cells; ids are global generation indices.
@@ -575,6 +579,7 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
       scan_particles<D>(s_, fluids_, mats_, guards_, vmin_dom, vmax_dom, grid_.periodic, step_, t_);
   std::vector<double> r = {
       scan.max_speed,
+      scan.max_acceleration,
       scan.max_density_dev,
       scan.violation.empty() ? 0.0 : 1.0,
       comm_.root() && opt_.cancel_requested && opt_.cancel_requested() ? 1.0 : 0.0,
@@ -590,13 +595,14 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
   comm_seconds_ += MPI_Wtime() - t0;
   EndOfStep e;
   e.max_speed = r[0];
-  e.max_density_dev = r[1];
-  e.violated = r[2] > 0;
-  e.cancel = r[3] > 0;
-  e.interrupt = r[4] > 0;
-  e.checkpoint = r[5] > 0;
-  e.out_of_time = r[6] > 0;
-  e.min_contact_distance = -r[7];
+  e.max_acceleration = r[1];
+  e.max_density_dev = r[2];
+  e.violated = r[3] > 0;
+  e.cancel = r[4] > 0;
+  e.interrupt = r[5] > 0;
+  e.checkpoint = r[6] > 0;
+  e.out_of_time = r[7] > 0;
+  e.min_contact_distance = -r[8];
   if (e.violated) e.diagnosis = comm_.first_non_empty(scan.violation);
   return e;
 }
@@ -859,7 +865,9 @@ void Simulation<D, K>::start() {
       const GuardScan<D> scan =
           scan_particles<D>(s_, fluids_, mats_, guards_, detail::to_vec<D>(c_.domain().lo()),
                             detail::to_vec<D>(c_.domain().hi()), grid_.periodic, 0, 0.0);
-      dt_ = c_.time().fixed_dt() > 0 ? c_.time().fixed_dt() : bound_->dt(comm_.max(scan.max_speed));
+      dt_ = c_.time().fixed_dt() > 0
+                ? c_.time().fixed_dt()
+                : bound_->dt(comm_.max(scan.max_speed), comm_.max(scan.max_acceleration));
       dt0_ = dt_;
     }
     result_.create(metadata("running"));
@@ -896,7 +904,7 @@ typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
   StepReport rep{e.violated, e.cancel, e.interrupt, e.checkpoint, e.out_of_time, e.diagnosis};
   if (e.violated) return rep;
   if (c_.time().fixed_dt() <= 0) {
-    dt_ = bound_->dt(e.max_speed);
+    dt_ = bound_->dt(e.max_speed, e.max_acceleration);
     if (dt_ < guards_.min_dt_fraction * dt0_) {
       char buf[200];
       std::snprintf(buf, sizeof buf,
@@ -924,6 +932,7 @@ RunOutcome Simulation<D, K>::run() {
   while (true) {
     if (schedule_.finished(t_)) break;
     if (c_.time().max_steps() > 0 && step_ >= c_.time().max_steps()) {
+      if (!last_step_had_snapshot_) write_snapshot();
       message = "time.max_steps reached";
       break;
     }

@@ -64,6 +64,13 @@ TEST(CaseValidation, NegativeDx) {
   EXPECT_TRUE(has_error(errs, "dx", "must be > 0")) << dump(errs);
 }
 
+TEST(CaseValidation, OutputIntervalBoundsTheSnapshotCount) {
+  // end_time 1 / interval 1e-9: a billion snapshot times would be stored before the run.
+  EXPECT_TRUE(
+      has_error(errors_of("output { interval: 1e-9 }"), "output.interval", "at most 100000"));
+  EXPECT_TRUE(errors_of("output { interval: 1e-5 }").empty());
+}
+
 TEST(CaseValidation, MissingMaterialIsNamed) {
   const auto errs = errors_of(
       R"(fluids { name: "g" material: "oil" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } })");
@@ -116,7 +123,8 @@ TEST(CaseValidation, NotImplementedUnitsAreRejectedNotIgnored) {
   errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
 bodies { name: "b" material: "s" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } }
 contact { stiffness: 1 friction { coefficient: 0.3 } })");
-  EXPECT_TRUE(has_error(errs, "contact.friction.tangential_stiffness", "must be > 0")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "contact.friction.tangential_stiffness", "must be > 0"))
+      << dump(errs);
   errs = errors_of(R"(open_boundaries { name: "in" })");
   EXPECT_TRUE(has_error(errs, "open_boundaries[0]", "not implemented yet")) << dump(errs);
 }
