@@ -416,14 +416,52 @@ class Validator {
       non_negative(k.friction().coefficient(), "contact.friction.coefficient");
       positive(k.friction().tangential_stiffness(), "contact.friction.tangential_stiffness");
     }
-    if (c_.bodies_size() == 0)
-      error("contact", "contact is configured but the case has no rigid bodies");
+    bool solidifies = false;
+    for (const auto& pt : c_.phase_transitions()) solidifies = solidifies || pt.reversible();
+    if (c_.bodies_size() == 0 && !solidifies)
+      error("contact",
+            "contact is configured but the case has no rigid bodies (and no reversible phase "
+            "transition that could make some)");
+  }
+
+  void phase_transitions() {
+    for (int i = 0; i < c_.phase_transitions_size(); ++i) {
+      const auto& pt = c_.phase_transitions(i);
+      const std::string f = idx("phase_transitions", i);
+      material_ref(pt.solid_material(), v1::SOLID, cat(f, "solid_material"), true);
+      material_ref(pt.fluid_material(), v1::FLUID, cat(f, "fluid_material"), true);
+      if (pt.driver() == v1::DRIVER_UNSPECIFIED)
+        error(cat(f, "driver"), "is required (TEMPERATURE or CONCENTRATION)");
+      // A transition needs the field that drives it (issue: only the effects a scene calls for).
+      if (pt.driver() == v1::TEMPERATURE && !c_.has_thermal())
+        error(cat(f, "driver"),
+              "TEMPERATURE needs heat conduction: add a `thermal { }` block to the case");
+      if (pt.driver() == v1::CONCENTRATION && !c_.has_diffusion())
+        error(cat(f, "driver"),
+              "CONCENTRATION needs concentration diffusion: add a `diffusion { }` block");
+      if (!finite(pt.transition_value())) error(cat(f, "transition_value"), "must be finite");
+      non_negative(pt.hysteresis(), cat(f, "hysteresis"));
+      if (pt.has_join_radius()) positive(pt.join_radius(), cat(f, "join_radius"));
+      if (pt.has_join_radius() && pt.join_radius() >= kernel_support_factor(c_) * c_.dx())
+        error(cat(f, "join_radius"), "must be smaller than the kernel support radius (" +
+                                         num(kernel_support_factor(c_) * c_.dx()) + ")");
+      if (pt.has_max_bodies() && pt.max_bodies() < c_.bodies_size())
+        error(cat(f, "max_bodies"), "must be >= the number of bodies in the case (" +
+                                        std::to_string(c_.bodies_size()) + ")");
+      if (pt.has_latent_heat() || pt.has_latent_heat_interval())
+        error(cat(f, pt.has_latent_heat() ? "latent_heat" : "latent_heat_interval"),
+              "not implemented yet: latent heat (apparent capacity, Fuchs 2021 Remark 3)");
+      for (int j = 0; j < i; ++j)
+        if (c_.phase_transitions(j).solid_material() == pt.solid_material() ||
+            c_.phase_transitions(j).fluid_material() == pt.fluid_material())
+          error(f, "a material takes part in two phase transitions (also in phase_transitions[" +
+                       std::to_string(j) + "])");
+    }
   }
 
   void not_implemented() {
     if (c_.has_contact()) contact();
-    for (int i = 0; i < c_.phase_transitions_size(); ++i)
-      error(idx("phase_transitions", i), "not implemented yet: phase transitions");
+    phase_transitions();
     if (c_.has_thermal()) {
       if (!finite(c_.thermal().initial_temperature()))
         error("thermal.initial_temperature", "must be finite");

@@ -14,11 +14,15 @@ RigidBodies<D>::RigidBodies(ParticleStore<D>& s, const v1::Case& c,
     : s_(s),
       body_(s.template add<std::int32_t>("body", kName, true)),
       offset_(s.template add<Vec<D>>("body_offset", kName, true)),
-      accel_(s.template add<Vec<D>>("wall_acceleration", kName, false)),
+      accel_(s.template add<Vec<D>>("wall_acceleration", kName, true)),
       fluid_force_(s.template add<Vec<D>>("rigid_fluid_force", kName, false)) {
+  // Persistent: set when the bodies move, before particles migrate, and read by the wall
+  // condition after; ghosts do not need it.
+  accel_.set_ghost(false);
   for (int k = 0; k < c.bodies_size(); ++k) {
     const auto& pb = c.bodies(k);
     RigidBody<D> b;
+    b.source = k;
     b.name = pb.name().empty() ? "body_" + std::to_string(k) : pb.name();
     b.motion = pb.motion_type() == v1::FIXED        ? BodyMotion::kFixed
                : pb.motion_type() == v1::PRESCRIBED ? BodyMotion::kPrescribed
@@ -64,9 +68,7 @@ void RigidBodies<D>::initialize(const Comm& comm, double dx, const std::vector<V
   }
   // Pass 2 (eqs. 21, 23): inertia about the centre of mass, with the particles' own inertia
   // (Remark 13): disks of radius dx/sqrt(pi) in 2D, spheres of radius (3/(4 pi))^(1/3) dx in 3D.
-  const double r_eff =
-      D == 2 ? dx / std::sqrt(std::numbers::pi) : std::cbrt(0.75 / std::numbers::pi) * dx;
-  const double self = (D == 2 ? 0.5 : 0.4) * r_eff * r_eff;
+  const double self = self_inertia_per_mass(dx);
   const std::size_t s2 = A * A;
   auto second = exact_sum(
       nb * s2,
@@ -103,6 +105,13 @@ void RigidBodies<D>::initialize(const Comm& comm, double dx, const std::vector<V
 }
 
 template <int D>
+double RigidBodies<D>::self_inertia_per_mass(double dx) {
+  const double r_eff =
+      D == 2 ? dx / std::sqrt(std::numbers::pi) : std::cbrt(0.75 / std::numbers::pi) * dx;
+  return (D == 2 ? 0.5 : 0.4) * r_eff * r_eff;
+}
+
+template <int D>
 void RigidBodies<D>::kick(double h, double t) {
   for (RigidBody<D>& b : bodies_) {
     if (!b.moves_freely()) continue;
@@ -119,6 +128,7 @@ void RigidBodies<D>::kick(double h, double t) {
 template <int D>
 void RigidBodies<D>::drift(double dt, double t_end) {
   for (RigidBody<D>& b : bodies_) {
+    if (!b.active()) continue;
     if (b.motion == BodyMotion::kFree) {
       b.com += dt * b.velocity;  // eq. 33
       if constexpr (D == 3) {
@@ -206,6 +216,7 @@ void RigidBodies<D>::reduce_fluid_forces(const Comm& comm) {
 template <int D>
 void RigidBodies<D>::update_accelerations(double t) {
   for (RigidBody<D>& b : bodies_) {
+    if (!b.active()) continue;
     if (b.motion == BodyMotion::kFree) {
       b.acceleration = (b.fluid_force + b.contact_force) / b.mass + body_force(b, t);
       AngVec<D> m = b.fluid_torque + b.contact_torque;
@@ -248,9 +259,14 @@ void get(const std::map<std::string, double>& st, const std::string& key, V& v) 
 
 template <int D>
 void RigidBodies<D>::save(std::map<std::string, double>& st) const {
+  // Phase transitions add bodies during a run: the count and what a new body was born as.
+  st["bodies.count"] = static_cast<double>(bodies_.size());
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
     const RigidBody<D>& b = bodies_[k];
     const std::string p = "body." + std::to_string(k) + ".";
+    st[p + "source"] = b.source;
+    st[p + "motion"] = static_cast<double>(b.motion);
+    st[p + "force_factor"] = b.body_force_factor;
     st[p + "mass"] = b.mass;
     st[p + "particles"] = static_cast<double>(b.particles);
     put(st, p + "com0", b.com0);
@@ -275,6 +291,21 @@ void RigidBodies<D>::save(std::map<std::string, double>& st) const {
 
 template <int D>
 void RigidBodies<D>::load(const std::map<std::string, double>& st) {
+  const auto count = st.find("bodies.count");
+  if (count != st.end()) {
+    const auto n = static_cast<std::size_t>(count->second);
+    for (std::size_t k = bodies_.size(); k < n; ++k) {
+      const std::string p = "body." + std::to_string(k) + ".";
+      RigidBody<D> b;
+      b.name = "body_" + std::to_string(k);
+      b.source = static_cast<int>(st.at(p + "source"));
+      b.motion = static_cast<BodyMotion>(static_cast<int>(st.at(p + "motion")));
+      b.body_force_factor = st.at(p + "force_factor");
+      // A piece split off a body with prescribed motion follows that body's path.
+      if (b.source >= 0) b.path = bodies_[static_cast<std::size_t>(b.source)].path;
+      bodies_.push_back(b);
+    }
+  }
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
     RigidBody<D>& b = bodies_[k];
     const std::string p = "body." + std::to_string(k) + ".";

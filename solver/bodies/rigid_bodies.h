@@ -67,6 +67,10 @@ class RigidBodies {
 
   double total_mass() const;
 
+  // Own moment of inertia per unit mass of a rigid particle (Fuchs 2021 Remark 13): a disk of
+  // radius dx/sqrt(pi) in 2D, a sphere of radius (3/(4 pi))^(1/3) dx in 3D.
+  static double self_inertia_per_mass(double dx);
+
   // Checkpoint state (everything the integrator needs besides the particle columns).
   void save(std::map<std::string, double>& state) const;
   void load(const std::map<std::string, double>& state);

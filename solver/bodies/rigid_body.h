@@ -95,7 +95,11 @@ struct RigidBody {
   AngVec<D> angular_acceleration = AngVec<D>::Zero();
   std::int64_t contacts = 0;
 
-  bool moves_freely() const { return motion == BodyMotion::kFree; }
+  int source = -1;  // index of the case body it descends from (-1: born by solidification)
+
+  // A body whose particles all melted (or that merged into another) keeps its slot, empty.
+  bool active() const { return particles > 0; }
+  bool moves_freely() const { return motion == BodyMotion::kFree && active(); }
 
   // World-frame inertia and its inverse applied to a vector.
   AngVec<D> inverse_inertia(const AngVec<D>& m) const {

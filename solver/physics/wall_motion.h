@@ -19,8 +19,11 @@ class WallMotion {
         paths_(std::move(paths)),
         x0_(s.template add<Vec<D>>("reference_position", kName, true)),
         wall_(wall_index),
-        accel_(s.template add<Vec<D>>("wall_acceleration", kName, false)) {
+        accel_(s.template add<Vec<D>>("wall_acceleration", kName, true)) {
     x0_.set_ghost(false);
+    // Persistent: set when the walls move, before particles migrate, and read by the wall
+    // condition after; ghosts do not need it.
+    accel_.set_ghost(false);
   }
 
   Column<Vec<D>>& reference_position() { return x0_; }

@@ -18,6 +18,7 @@
 
 #include "case/materials.h"
 #include "case/motion.h"
+#include "solver/bodies/phase_transitions.h"
 #include "solver/bodies/rigid_bodies.h"
 #include "solver/bodies/spring_dashpot_contact.h"
 #include "solver/core/neighbor_list.h"
@@ -159,7 +160,11 @@ class Simulation {
   std::optional<ScalarDiffusion<D, K>> concentration_;  // Fuchs 2021 Remark 4
   Column<std::uint16_t>* wall_index_ = nullptr;
   std::optional<SpringDashpotContact<D>> contact_;
-  bool contact_possible_ = false;  // a contact candidate nearer than dx (+ margin): substep
+  std::optional<PhaseTransitions<D>> phase_;  // Fuchs 2021 eq. 29
+  std::size_t body_slots_ = 0;                // width of the body series in the result
+  void build_phase_transitions();
+  std::string apply_phase_transitions();  // non-empty: why the run cannot go on
+  bool contact_possible_ = false;         // a contact candidate nearer than dx (+ margin): substep
   double min_rigid_mass_ = 0;
   Column<Vec<D>>* transport_ = nullptr;   // u~ (transport-velocity formulation)
   Column<Vec<D>>* background_ = nullptr;  // a~

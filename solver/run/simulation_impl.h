@@ -101,13 +101,19 @@ void Simulation<D, K>::build_units() {
       units_.push_back(WallMotion<D>::kName);
     }
   }
-  if (c_.bodies_size() > 0) {
+  if (c_.bodies_size() > 0 || c_.phase_transitions_size() > 0) {
     std::vector<double> rho_s, rho_f;
     for (const auto& b : c_.bodies()) {
       rho_s.push_back(mats_[static_cast<size_t>(material_index(mats_, b.material()))].rho0);
       const int f = b.buoyancy_fluid().empty() ? -1 : material_index(mats_, b.buoyancy_fluid());
       rho_f.push_back(f < 0 ? 0.0 : mats_[static_cast<size_t>(f)].rho0);
       const double m = rho_s.back() * wall_volume_;
+      min_rigid_mass_ = min_rigid_mass_ == 0 ? m : std::min(min_rigid_mass_, m);
+    }
+    // Particles that solidify keep their fluid mass.
+    for (const auto& pt : c_.phase_transitions()) {
+      const double m = mats_[static_cast<size_t>(material_index(mats_, pt.fluid_material()))].rho0 *
+                       wall_volume_;
       min_rigid_mass_ = min_rigid_mass_ == 0 ? m : std::min(min_rigid_mass_, m);
     }
     bodies_.emplace(s_, c_, rho_s, rho_f);
@@ -160,6 +166,7 @@ void Simulation<D, K>::build_units() {
   const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
   bound_.emplace(h_, factor, c_max, nu_max, body_ ? body_->max_magnitude() : 0.0);
   build_transport_units();
+  build_phase_transitions();
   if (c_.probes_size() > 0) {
     std::vector<ProbeSet<D>> sets;
     for (const auto& p : c_.probes()) {
@@ -183,7 +190,8 @@ void Simulation<D, K>::build_units() {
   result_.add_series("diagnostics/fluid_min", {static_cast<std::uint64_t>(D)});
   result_.add_series("diagnostics/fluid_max", {static_cast<std::uint64_t>(D)});
   if (bodies_) {
-    const auto nb = static_cast<std::uint64_t>(c_.bodies_size());
+    body_slots_ = phase_ ? phase_->max_bodies() : static_cast<std::size_t>(c_.bodies_size());
+    const auto nb = static_cast<std::uint64_t>(body_slots_);
     const std::uint64_t dd = D, aa = RigidBodies<D>::A;
     result_.add_series("bodies/time");
     result_.add_series("bodies/position", {nb, dd});
@@ -257,6 +265,47 @@ void Simulation<D, K>::build_transport_units() {
     for (const char* n : {"concentration_min", "concentration_max", "species_mass"})
       result_.add_series(std::string("diagnostics/") + n);
   }
+}
+
+template <int D, class K>
+void Simulation<D, K>::build_phase_transitions() {
+  if (c_.phase_transitions_size() == 0) return;
+  std::vector<PhaseRule> rules;
+  std::size_t slots = 0;
+  for (const auto& pt : c_.phase_transitions()) {
+    PhaseRule r;
+    r.solid = static_cast<std::uint16_t>(material_index(mats_, pt.solid_material()));
+    r.fluid = static_cast<std::uint16_t>(material_index(mats_, pt.fluid_material()));
+    r.temperature = pt.driver() == v1::TEMPERATURE;
+    // The hysteresis band is centred on the transition value: no flicker inside it.
+    r.melt_above = pt.transition_value() + 0.5 * pt.hysteresis();
+    r.freeze_below = pt.transition_value() - 0.5 * pt.hysteresis();
+    r.reversible = pt.reversible();
+    r.join_radius = pt.has_join_radius() ? pt.join_radius() : 1.5 * dx_;
+    rules.push_back(r);
+    slots =
+        std::max(slots, pt.has_max_bodies() ? static_cast<std::size_t>(pt.max_bodies())
+                                            : 2 * static_cast<std::size_t>(c_.bodies_size()) + 64);
+  }
+  phase_.emplace(std::move(rules), slots, dx_);
+  units_.push_back(PhaseTransitions<D>::kName);
+  for (const char* n : {"melted", "solidified", "active_bodies"})
+    result_.add_series(std::string("phase/") + n);
+}
+
+template <int D, class K>
+std::string Simulation<D, K>::apply_phase_transitions() {
+  if (!phase_) return {};
+  Timer tm(timer(PhaseTransitions<D>::kName));
+  const auto out =
+      phase_->run(s_, nl_, *bodies_, heat_ ? &heat_->values() : nullptr,
+                  concentration_ ? &concentration_->values() : nullptr, transport_, comm_);
+  if (!out.error.empty()) {
+    char buf[120];
+    std::snprintf(buf, sizeof buf, " at step %lld, t = %.9g", static_cast<long long>(step_), t_);
+    return out.error + buf;
+  }
+  return {};
 }
 
 template <int D, class K>
@@ -678,7 +727,24 @@ void Simulation<D, K>::sample_series() {
 template <int D, class K>
 void Simulation<D, K>::sample_bodies() {
   std::vector<double> pos, vel, w, q, ff, ft, cf, ct, n, ke, mass, inertia;
-  for (const RigidBody<D>& b : bodies_->bodies()) {
+  // Fixed width: slots of bodies not born yet (phase transitions) or gone are NaN.
+  std::vector<RigidBody<D>> padded;
+  const std::vector<RigidBody<D>>* list = &bodies_->bodies();
+  if (phase_) {
+    padded = bodies_->bodies();
+    RigidBody<D> none;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    none.mass = none.body_force_factor = nan;
+    none.com.setConstant(nan);
+    none.velocity.setConstant(nan);
+    none.omega.setConstant(nan);
+    none.inertia_body.setConstant(nan);
+    for (RigidBody<D>& b : padded)
+      if (!b.active()) b = none;
+    padded.resize(body_slots_, none);
+    list = &padded;
+  }
+  for (const RigidBody<D>& b : *list) {
     for (int a = 0; a < D; ++a) {
       pos.push_back(b.com[a]);
       vel.push_back(b.velocity[a]);
@@ -713,6 +779,13 @@ void Simulation<D, K>::sample_bodies() {
   result_.append_series("bodies/kinetic_energy", ke);
   result_.append_series("bodies/mass", mass);
   result_.append_series("bodies/inertia", inertia);
+  if (phase_) {
+    std::int64_t active = 0;
+    for (const RigidBody<D>& b : bodies_->bodies()) active += b.active() ? 1 : 0;
+    result_.append_series("phase/melted", {static_cast<double>(phase_->melted_total())});
+    result_.append_series("phase/solidified", {static_cast<double>(phase_->solidified_total())});
+    result_.append_series("phase/active_bodies", {static_cast<double>(active)});
+  }
 }
 
 template <int D, class K>
@@ -900,6 +973,12 @@ void Simulation<D, K>::start() {
 template <int D, class K>
 typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
   integrate_step(schedule_.clip(t_, dt_, next_output_));
+  if (std::string why = apply_phase_transitions(); !why.empty()) {
+    StepReport rep;
+    rep.violated = true;
+    rep.diagnosis = why;
+    return rep;
+  }
   const EndOfStep e = end_of_step_checks();
   StepReport rep{e.violated, e.cancel, e.interrupt, e.checkpoint, e.out_of_time, e.diagnosis};
   if (e.violated) return rep;
@@ -942,7 +1021,8 @@ RunOutcome Simulation<D, K>::run() {
       message = e.diagnosis;
       break;
     }
-    if (t_ >= next_series_ - schedule_.eps()) sample_series();
+    // Sampled on schedule and at the end, so the series end where the run does.
+    if (t_ >= next_series_ - schedule_.eps() || schedule_.finished(t_)) sample_series();
     last_step_had_snapshot_ = false;
     if (schedule_.snapshot_due(t_, next_output_)) {
       write_snapshot();

@@ -116,8 +116,12 @@ TEST(CaseValidation, DimensionSpecificShapes) {
 }
 
 TEST(CaseValidation, NotImplementedUnitsAreRejectedNotIgnored) {
-  auto errs = errors_of(R"(phase_transitions { solid_material: "s" })");
-  EXPECT_TRUE(has_error(errs, "phase_transitions[0]", "not implemented yet")) << dump(errs);
+  auto errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
+thermal { }
+phase_transitions { solid_material: "s" fluid_material: "water" driver: TEMPERATURE
+                    latent_heat: 2e5 })");
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].latent_heat", "not implemented yet"))
+      << dump(errs);
   errs = errors_of(R"(open_boundaries { name: "in" })");
   EXPECT_TRUE(has_error(errs, "open_boundaries[0]", "not implemented yet")) << dump(errs);
   errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
@@ -127,6 +131,28 @@ contact { stiffness: 1 friction { coefficient: 0.3 } })");
       << dump(errs);
   errs = errors_of(R"(open_boundaries { name: "in" })");
   EXPECT_TRUE(has_error(errs, "open_boundaries[0]", "not implemented yet")) << dump(errs);
+}
+
+TEST(CaseValidation, PhaseTransitionsNeedTheirMaterialsAndDrivingField) {
+  auto errs = errors_of(R"(phase_transitions { solid_material: "s" })");
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].solid_material", "unknown material 's'"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].fluid_material", "is required")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].driver", "is required")) << dump(errs);
+  // Phase change without the field that drives it.
+  errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
+phase_transitions { solid_material: "s" fluid_material: "water" driver: CONCENTRATION
+                    transition_value: 0.8 hysteresis: -1 })");
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].driver", "add a `diffusion { }` block"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].hysteresis", "must be >= 0")) << dump(errs);
+  errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
+thermal { }
+phase_transitions { solid_material: "water" fluid_material: "s" driver: TEMPERATURE
+                    join_radius: 0.5 })");
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].solid_material", "expected SOLID"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].join_radius", "kernel support")) << dump(errs);
 }
 
 TEST(CaseValidation, RigidBodiesAndContact) {

@@ -9,7 +9,7 @@
 #include "case/load.h"
 #include "case/materials.h"
 #include "solver/bodies/rigid_bodies.h"
-#include "solver/scene/scene_builder.h"
+#include "tests/support/body_scene.h"
 #include "tests/support/result_reader.h"
 #include "tests/support/test_cases.h"
 
@@ -17,32 +17,6 @@ namespace sph {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// Places the particles of the case's bodies in `s` and builds the body table.
-template <int D>
-std::unique_ptr<RigidBodies<D>> bodies_of(const v1::Case& c, ParticleStore<D>& s) {
-  const auto mats = resolve_materials(c);
-  std::vector<double> rho_s, rho_f;
-  for (const auto& b : c.bodies()) {
-    rho_s.push_back(mats[static_cast<size_t>(material_index(mats, b.material()))].rho0);
-    rho_f.push_back(0);
-  }
-  auto bodies = std::make_unique<RigidBodies<D>>(s, c, rho_s, rho_f);
-  std::vector<SceneParticle> ps;
-  SceneBuilder(c, mats).for_each([&](const SceneParticle& p) { ps.push_back(p); });
-  s.resize(ps.size(), ps.size());
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    for (int a = 0; a < D; ++a) s.x[i][a] = ps[i].x[a];
-    s.m[i] = ps[i].mass;
-    s.kind[i] = ps[i].kind;
-    s.id[i] = static_cast<ParticleId>(i);
-    bodies->body_index()[i] = ps[i].body;
-  }
-  std::vector<Vec<D>> v0(static_cast<size_t>(c.bodies_size()), Vec<D>::Zero());
-  std::vector<AngVec<D>> w0(static_cast<size_t>(c.bodies_size()), AngVec<D>::Zero());
-  bodies->initialize(Comm(MPI_COMM_WORLD), c.dx(), v0, w0);
-  return bodies;
-}
 
 v1::Case body_case(int dim, double dx, const std::string& shape) {
   return parse_case_text("dimension: " + std::to_string(dim) + " dx: " + std::to_string(dx) +
@@ -232,13 +206,15 @@ namespace {
 // particle surfaces are corrugated at dx), which stops even a frictionless body.
 double slide(bool friction, double& final_speed) {
   std::string points;
-  for (int k = 0; k < 20; ++k) points += "points { x: " + std::to_string(0.0025 * k) + " y: 0.0045 } ";
+  for (int k = 0; k < 20; ++k)
+    points += "points { x: " + std::to_string(0.0025 * k) + " y: 0.0045 } ";
   std::string text = R"(
     dimension: 2 dx: 0.01
     domain { lo { x: -0.1 y: -0.05 } hi { x: 0.5 y: 0.1 } }
     materials { name: "s" phase: SOLID density: 1000 }
     walls { shape { box { lo { x: -0.1 y: -0.03 } hi { x: 0.5 y: 0 } } } }
-    bodies { name: "bar" material: "s" shape { points { )" + points + R"( } } initial_velocity { x: 0.5 } }
+    bodies { name: "bar" material: "s" shape { points { )" +
+                     points + R"( } } initial_velocity { x: 0.5 } }
     gravity { acceleration { y: -10 } }
     time { end_time: 0.4 fixed_dt: 5e-4 }
     output { series_interval: 1e-3 }
@@ -258,9 +234,11 @@ TEST(RigidBody, CoulombFrictionStopsASlidingBar) {
   const double d_free = slide(false, v_free);
   const double d_fric = slide(true, v_fric);
   const double expected = 0.5 * 0.5 / (2 * 0.3 * 10);
-  std::printf("sliding bar: frictionless travels %.4f m in 0.4 s, ending at %.3f m/s; with mu = 0.3 it stops "
-              "(speed %.1e) after %.4f m, Coulomb v0^2/(2 mu g) = %.4f m\n",
-              d_free, v_free, v_fric, d_fric, expected);
+  std::printf(
+      "sliding bar: frictionless travels %.4f m in 0.4 s, ending at %.3f m/s; with mu = 0.3 it "
+      "stops "
+      "(speed %.1e) after %.4f m, Coulomb v0^2/(2 mu g) = %.4f m\n",
+      d_free, v_free, v_fric, d_fric, expected);
   EXPECT_GT(v_free, 0.3);
   EXPECT_LT(v_fric, 0.01);
   EXPECT_NEAR(d_fric / expected, 1.0, 0.15);

@@ -1,0 +1,84 @@
+#pragma once
+// Reversible melting and solidification between a SOLID and a FLUID material (Fuchs 2021,
+// "Modeling thermally driven reversible phase transitions", eq. 29; Remark 4 for a
+// concentration-driven transition).
+//
+// At the end of a step every owned particle is checked against the transition rules:
+//  - a rigid particle of the solid material whose temperature (concentration) exceeds
+//    T_t + hysteresis/2 leaves its body and becomes a fluid particle of the fluid material.
+//    It keeps mass, position, temperature and the velocity the body gave it (eq. 36), its
+//    acceleration for the next half kick is the body's at its place; density and pressure
+//    are those the wall condition gave it, so the fluid sees no jump;
+//  - a fluid particle of the fluid material below T_t - hysteresis/2 (reversible rules only)
+//    becomes a rigid particle of the solid material.
+// Bodies are then regrouped: the rigid particles of every body that lost or may gain
+// particles, and the new rigid particles, are linked when closer than the join radius and
+// either in the same body or one of them new. Each connected piece becomes a body: a piece of
+// an old body keeps it (a body broken in two becomes two), a piece joining several bodies
+// merges them, a piece of only new particles starts a new body. Mass, centre of mass and
+// inertia are recomputed from the particles (eqs. 20-23, Remark 13). A piece of one old body
+// keeps its angular velocity and gets u_k = u'_k + omega_k x (r_k - r'_k) (eq. 29); a merged
+// or new body gets the total linear and angular momentum of what it is made of. Melted
+// particles carry their momentum into the fluid, so momentum is conserved throughout.
+//
+// Parallel: the particles taking part in a regrouping are gathered on every rank (ordered by
+// id) and every rank runs the same union-find, so the body table stays replicated and results
+// do not depend on the rank count. Only steps with a transition pay for the gather, and only
+// for the bodies involved.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/bodies/rigid_bodies.h"
+
+namespace sph {
+
+struct PhaseRule {
+  std::uint16_t solid = 0, fluid = 0;  // material indices
+  bool temperature = true;             // driver: temperature, else concentration
+  double melt_above = 0, freeze_below = 0;
+  bool reversible = false;
+  double join_radius = 0;
+};
+
+template <int D>
+class PhaseTransitions {
+ public:
+  static constexpr const char* kName = "phase_transition";
+
+  PhaseTransitions(std::vector<PhaseRule> rules, std::size_t max_bodies, double dx)
+      : rules_(std::move(rules)), max_bodies_(max_bodies), dx_(dx) {}
+
+  struct Outcome {
+    std::int64_t melted = 0, solidified = 0;  // this step, all ranks
+    std::string error;                        // non-empty: the run cannot go on
+  };
+
+  // Collective. `temperature`/`concentration` may be null when no rule uses them;
+  // `transport` is the transport velocity column (null without TVF).
+  Outcome run(ParticleStore<D>& s, const NeighborList<D>& nl, RigidBodies<D>& bodies,
+              const Column<double>* temperature, const Column<double>* concentration,
+              Column<Vec<D>>* transport, const Comm& comm);
+
+  std::int64_t melted_total() const { return melted_total_; }
+  std::int64_t solidified_total() const { return solidified_total_; }
+  std::size_t max_bodies() const { return max_bodies_; }
+
+ private:
+  struct Record {  // a particle taking part in a regrouping
+    ParticleId id;
+    std::int32_t old_body;  // -1: solidified this step
+    double m;
+    Vec<D> x, v;
+  };
+  // involved[k] != 0 for the bodies taking part (the first bodies().size() entries).
+  void regroup(std::vector<Record>& recs, const std::vector<std::int64_t>& involved,
+               RigidBodies<D>& bodies, Outcome& out) const;
+
+  std::vector<PhaseRule> rules_;
+  std::size_t max_bodies_;
+  double dx_;
+  std::int64_t melted_total_ = 0, solidified_total_ = 0;
+};
+
+}  // namespace sph

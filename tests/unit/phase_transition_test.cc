@@ -1,0 +1,204 @@
+// Reversible phase transitions on the particle level (Fuchs 2021 eq. 29): what a melting or
+// solidifying particle does to its body, with no fluid solver around it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "case/load.h"
+#include "solver/bodies/phase_transitions.h"
+#include "solver/core/neighbor_list.h"
+#include "solver/parallel/halo.h"
+#include "tests/support/body_scene.h"
+
+namespace sph {
+namespace {
+
+// 2D scene: the given bodies (material "solid") and fluid regions (material "liquid").
+v1::Case scene(const std::string& parts) {
+  return parse_case_text(R"(dimension: 2 dx: 0.1
+    domain { lo { x: -3 y: -3 } hi { x: 3 y: 3 } }
+    materials { name: "solid" phase: SOLID density: 1000 }
+    materials { name: "liquid" density: 1000 eos { sound_speed: 10 } }
+    time { end_time: 1 fixed_dt: 1e-3 })" +
+                         parts);
+}
+
+struct Fixture {
+  ParticleStore<2> s;
+  std::unique_ptr<RigidBodies<2>> bodies;
+  Column<double>* T = nullptr;
+  NeighborList<2> nl;
+  Comm comm{MPI_COMM_WORLD};
+
+  Fixture(const v1::Case& c, const Vec<2>& u0, double w0) {
+    T = &s.add<double>("temperature", "heat_conduction", true);
+    AngVec<2> w;
+    w[0] = w0;
+    bodies = bodies_of<2>(c, s, u0, w);
+    // Fluid particles of the scene move with u0 too (what matters is that they carry momentum).
+    for (std::size_t i = 0; i < s.owned(); ++i)
+      if (s.kind[i] == Kind::kFluid) s.v[i] = Vec<2>(0.3, -0.2);
+    const CellGrid<2> grid(Vec<2>(-3, -3), Vec<2>(3, 3), 0.3, {false, false});
+    Halo<2> halo(grid, comm);
+    std::vector<std::int64_t> counts(static_cast<size_t>(grid.total()), 1);
+    halo.set_decomposition(Decomposition<2>(grid, 1, counts));
+    nl.build(s, grid, halo.ghost_box(), 0.3, nullptr, true);
+  }
+  PhaseTransitions<2>::Outcome run(PhaseTransitions<2>& pt) {
+    return pt.run(s, nl, *bodies, T, nullptr, nullptr, comm);
+  }
+  Vec<2> momentum() const {  // bodies plus fluid
+    Vec<2> p = Vec<2>::Zero();
+    for (const auto& b : bodies->bodies())
+      if (b.active()) p += b.mass * b.velocity;
+    for (std::size_t i = 0; i < s.owned(); ++i)
+      if (s.kind[i] == Kind::kFluid) p += s.m[i] * s.v[i];
+    return p;
+  }
+  double mass() const {
+    double m = 0;
+    for (std::size_t i = 0; i < s.owned(); ++i) m += s.m[i];
+    return m;
+  }
+};
+
+PhaseRule rule(double t, double hysteresis, bool reversible) {
+  PhaseRule r;
+  r.solid = 0;
+  r.fluid = 1;
+  r.melt_above = t + 0.5 * hysteresis;
+  r.freeze_below = t - 0.5 * hysteresis;
+  r.reversible = reversible;
+  r.join_radius = 0.15;
+  return r;
+}
+
+TEST(PhaseTransition, HalfMeltedBodyMovesAsEq29Says) {
+  Fixture f(scene(R"(bodies { name: "b" material: "solid"
+                       shape { box { lo { x: -1 y: -0.5 } hi { x: 1 y: 0.5 } } } })"),
+            Vec<2>(0.5, 0.1), 2.0);
+  const RigidBody<2> before = f.bodies->bodies()[0];
+  const Vec<2> p0 = f.momentum();
+  const double m0 = f.mass();
+  for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = f.s.x[i][0] > 0.3 ? 100 : 0;
+  PhaseTransitions<2> pt({rule(50, 0, false)}, 8, 0.1);
+  const auto out = f.run(pt);
+  ASSERT_TRUE(out.error.empty()) << out.error;
+  const RigidBody<2>& b = f.bodies->bodies()[0];
+  std::int64_t melted = 0;
+  for (std::size_t i = 0; i < f.s.owned(); ++i) melted += f.s.kind[i] == Kind::kFluid;
+  EXPECT_EQ(out.melted, melted);
+  EXPECT_EQ(b.particles + melted, before.particles);
+  // Eq. 29: same angular velocity, u = u' + omega x (r - r').
+  const Vec<2> expect = before.velocity + cross<2>(before.omega, b.com - before.com);
+  EXPECT_EQ(b.omega[0], before.omega[0]);
+  EXPECT_NEAR((b.velocity - expect).norm(), 0.0, 1e-14);
+  EXPECT_LT(b.com[0], before.com[0] - 0.2);  // the centre moved towards the solid part
+  // Melted particles carry the momentum they had: the total is unchanged.
+  EXPECT_NEAR((f.momentum() - p0).norm(), 0.0, 1e-12 * p0.norm());
+  EXPECT_EQ(f.mass(), m0);
+  // The remaining particles sit where the body says (offsets in the body frame).
+  for (std::size_t i = 0; i < f.s.owned(); ++i) {
+    if (f.s.kind[i] != Kind::kRigid) continue;
+    EXPECT_NEAR((b.com + b.orientation.matrix() * f.bodies->offset()[i] - f.s.x[i]).norm(), 0,
+                1e-13);
+  }
+}
+
+TEST(PhaseTransition, BodyMeltedThroughBecomesTwoBodies) {
+  // Two blocks joined by a bar; melting the bar leaves two bodies that keep rotating.
+  Fixture f(scene(R"(bodies { name: "dumbbell" material: "solid"
+                       shape { union {
+                         shapes { box { lo { x: -1.5 y: -0.5 } hi { x: -0.5 y: 0.5 } } }
+                         shapes { box { lo { x: 0.5 y: -0.5 } hi { x: 1.5 y: 0.5 } } }
+                         shapes { box { lo { x: -0.6 y: -0.1 } hi { x: 0.6 y: 0.1 } } } } } })"),
+            Vec<2>(0.2, 0), 1.0);
+  const RigidBody<2> before = f.bodies->bodies()[0];
+  const Vec<2> p0 = f.momentum();
+  for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = std::abs(f.s.x[i][0]) < 0.45 ? 100 : 0;
+  PhaseTransitions<2> pt({rule(50, 0, false)}, 8, 0.1);
+  ASSERT_TRUE(f.run(pt).error.empty());
+  const auto& bs = f.bodies->bodies();
+  ASSERT_EQ(bs.size(), 2u);
+  EXPECT_TRUE(bs[0].active() && bs[1].active());
+  EXPECT_EQ(bs[0].particles, bs[1].particles);  // symmetric pieces
+  EXPECT_NEAR(bs[0].com[0], -bs[1].com[0], 1e-12);
+  for (const auto& b : bs) {
+    EXPECT_EQ(b.omega[0], before.omega[0]);
+    EXPECT_NEAR(
+        (b.velocity - (before.velocity + cross<2>(before.omega, b.com - before.com))).norm(), 0.0,
+        1e-14);
+  }
+  EXPECT_NEAR((f.momentum() - p0).norm(), 0.0, 1e-12 * p0.norm());
+}
+
+TEST(PhaseTransition, LiquidFreezesOntoABodyOrIntoANewOne) {
+  // A body, liquid around it, and a liquid drop far away; all liquid cools below T_t.
+  Fixture f(scene(R"(bodies { name: "b" material: "solid"
+                       shape { box { lo { x: -0.5 y: -0.5 } hi { x: 0.5 y: 0.5 } } } }
+                     fluids { name: "film" material: "liquid"
+                       shape { box { lo { x: 0.5 y: -0.5 } hi { x: 0.7 y: 0.5 } } } }
+                     fluids { name: "drop" material: "liquid"
+                       shape { ball { center { x: -2 y: 2 } radius: 0.3 } } })"),
+            Vec<2>(0, 0), 0.0);
+  const Vec<2> p0 = f.momentum();
+  const double m0 = f.mass();
+  const std::int64_t n_body = f.bodies->bodies()[0].particles;
+  std::int64_t n_film = 0, n_drop = 0;
+  for (std::size_t i = 0; i < f.s.owned(); ++i) {
+    (*f.T)[i] = 0;
+    if (f.s.kind[i] == Kind::kFluid) (f.s.x[i][1] > 1 ? n_drop : n_film) += 1;
+  }
+  PhaseTransitions<2> pt({rule(50, 0, true)}, 8, 0.1);
+  const auto out = f.run(pt);
+  ASSERT_TRUE(out.error.empty()) << out.error;
+  EXPECT_EQ(out.solidified, n_film + n_drop);
+  const auto& bs = f.bodies->bodies();
+  ASSERT_EQ(bs.size(), 2u);
+  EXPECT_EQ(bs[0].particles, n_body + n_film);  // the film joined the body
+  EXPECT_EQ(bs[1].particles, n_drop);           // the drop is a body of its own
+  EXPECT_NEAR(bs[1].com[0], -2, 1e-12);
+  // The liquid's momentum went into the bodies.
+  EXPECT_NEAR((f.momentum() - p0).norm(), 0.0, 1e-12 * p0.norm());
+  EXPECT_GT(bs[1].velocity.norm(), 0.0);
+  EXPECT_EQ(f.mass(), m0);
+}
+
+TEST(PhaseTransition, HysteresisBandStopsFlicker) {
+  Fixture f(scene(R"(bodies { name: "b" material: "solid"
+                       shape { box { lo { x: -0.5 y: -0.5 } hi { x: 0.5 y: 0.5 } } } })"),
+            Vec<2>(0, 0), 0.0);
+  PhaseTransitions<2> pt({rule(50, 10, true)}, 8, 0.1);  // melts above 55, freezes below 45
+  auto set_all = [&](double t) {
+    for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = t;
+  };
+  set_all(54);  // inside the band: stays solid
+  EXPECT_EQ(f.run(pt).melted, 0);
+  set_all(56);
+  const auto melted = f.run(pt).melted;
+  EXPECT_EQ(melted, f.s.owned());
+  EXPECT_FALSE(f.bodies->bodies()[0].active());
+  for (double t : {54.0, 50.0, 46.0}) {  // cooling inside the band: stays liquid
+    set_all(t);
+    EXPECT_EQ(f.run(pt).solidified, 0) << "at T = " << t;
+  }
+  set_all(44);
+  EXPECT_EQ(f.run(pt).solidified, melted);
+  EXPECT_EQ(pt.melted_total(), melted);
+  EXPECT_EQ(pt.solidified_total(), melted);
+}
+
+TEST(PhaseTransition, BodyTableCapacityIsEnforced) {
+  Fixture f(scene(R"(fluids { name: "a" material: "liquid"
+                       shape { ball { center { x: -2 y: 0 } radius: 0.3 } } }
+                     fluids { name: "b" material: "liquid"
+                       shape { ball { center { x: 2 y: 0 } radius: 0.3 } } })"),
+            Vec<2>(0, 0), 0.0);
+  for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = 0;
+  PhaseTransitions<2> pt({rule(50, 0, true)}, 1, 0.1);
+  const auto out = f.run(pt);
+  EXPECT_NE(out.error.find("max_bodies"), std::string::npos) << out.error;
+}
+
+}  // namespace
+}  // namespace sph
