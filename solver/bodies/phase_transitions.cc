@@ -87,6 +87,7 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
     s.material[i] = r->fluid;
     body[i] = -1;
     s.a[i] = accel[i];  // the body's acceleration here (eq. 36) for the next half kick
+    s.rho[i] = r->fluid_rho0;
     if (transport) (*transport)[i] = s.v[i];
   }
   for (const auto& [i, r] : freeze) {

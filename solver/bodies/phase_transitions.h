@@ -7,8 +7,10 @@
 //  - a rigid particle of the solid material whose temperature (concentration) exceeds
 //    T_t + hysteresis/2 leaves its body and becomes a fluid particle of the fluid material.
 //    It keeps mass, position, temperature and the velocity the body gave it (eq. 36), its
-//    acceleration for the next half kick is the body's at its place; density and pressure
-//    are those the wall condition gave it, so the fluid sees no jump;
+//    acceleration for the next half kick is the body's at its place; its density starts at
+//    the fluid's reference density (the wall condition gave it the density of the
+//    neighbouring fluid, which may be another phase) and its pressure is the one the wall
+//    condition gave it, so the forces on its neighbours do not jump;
 //  - a fluid particle of the fluid material below T_t - hysteresis/2 (reversible rules only)
 //    becomes a rigid particle of the solid material.
 // Bodies are then regrouped: the rigid particles of every body that lost or may gain
@@ -35,6 +37,7 @@ namespace sph {
 
 struct PhaseRule {
   std::uint16_t solid = 0, fluid = 0;  // material indices
+  double fluid_rho0 = 1;               // reference density of the fluid material
   bool temperature = true;             // driver: temperature, else concentration
   double melt_above = 0, freeze_below = 0;
   bool reversible = false;

@@ -276,6 +276,7 @@ void Simulation<D, K>::build_phase_transitions() {
     PhaseRule r;
     r.solid = static_cast<std::uint16_t>(material_index(mats_, pt.solid_material()));
     r.fluid = static_cast<std::uint16_t>(material_index(mats_, pt.fluid_material()));
+    r.fluid_rho0 = mats_[r.fluid].rho0;
     r.temperature = pt.driver() == v1::TEMPERATURE;
     // The hysteresis band is centred on the transition value: no flicker inside it.
     r.melt_above = pt.transition_value() + 0.5 * pt.hysteresis();

@@ -22,7 +22,7 @@ class ServerLink {
   const std::string& address() const { return address_; }
 
  private:
-  std::unique_ptr<grpc::ClientContext> context(double timeout_seconds) const;
+  std::unique_ptr<grpc::ClientContext> context(double timeout_seconds, bool wait_for_ready) const;
   std::string address_;
   std::string token_;
   std::string pool_id_;
