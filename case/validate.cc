@@ -448,9 +448,22 @@ class Validator {
       if (pt.has_max_bodies() && pt.max_bodies() < c_.bodies_size())
         error(cat(f, "max_bodies"), "must be >= the number of bodies in the case (" +
                                         std::to_string(c_.bodies_size()) + ")");
-      if (pt.has_latent_heat() || pt.has_latent_heat_interval())
-        error(cat(f, pt.has_latent_heat() ? "latent_heat" : "latent_heat_interval"),
-              "not implemented yet: latent heat (apparent capacity, Fuchs 2021 Remark 3)");
+      if (pt.has_latent_heat() || pt.has_latent_heat_interval()) {
+        if (pt.driver() == v1::CONCENTRATION)
+          error(cat(f, pt.has_latent_heat() ? "latent_heat" : "latent_heat_interval"),
+                "latent heat needs driver TEMPERATURE");
+        if (!pt.has_latent_heat())
+          error(cat(f, "latent_heat"), "is required with latent_heat_interval");
+        else
+          positive(pt.latent_heat(), cat(f, "latent_heat"));
+        // The apparent capacity L/dT needs an interval of finite width (Fuchs 2021 Remark 3).
+        if (!pt.has_latent_heat_interval())
+          error(cat(f, "latent_heat_interval"),
+                "is required with latent_heat (the temperature interval over which it is "
+                "absorbed, centred on transition_value)");
+        else
+          positive(pt.latent_heat_interval(), cat(f, "latent_heat_interval"));
+      }
       for (int j = 0; j < i; ++j)
         if (c_.phase_transitions(j).solid_material() == pt.solid_material() ||
             c_.phase_transitions(j).fluid_material() == pt.fluid_material())
@@ -486,7 +499,8 @@ class Validator {
     if (t.has_cfl_factor() && (!(t.cfl_factor() > 0) || t.cfl_factor() > 2))
       error("time.cfl_factor", "must be in (0, 2] (got " + num(t.cfl_factor()) + ")");
     non_negative(t.fixed_dt(), "time.fixed_dt");
-    if (c_.fluids_size() == 0 && !(t.fixed_dt() > 0))
+    // A fluid material a phase transition produces gives the bound its sound speed too.
+    if (c_.fluids_size() == 0 && c_.phase_transitions_size() == 0 && !(t.fixed_dt() > 0))
       error("time.fixed_dt",
             "is required when the case has no fluid (the bound of Fuchs 2021 eq. 41 needs a sound "
             "speed)");

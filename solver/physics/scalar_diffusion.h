@@ -16,6 +16,15 @@
 // without a schedule is insulated (no flux: its particles are left out of the sum).
 // Materials marked fixed (a concentration held constant, e.g. gastric juice) are sources
 // that never change.
+//
+// Latent heat (Fuchs 2021 Remark 3; Proell, Wall, Meier 2020): the apparent-capacity scheme
+// raises c_p by L/dT inside the melting interval [T_lo, T_hi]. Integrated as written, an
+// explicit step can jump across a narrow interval and skip the latent heat. The update is
+// therefore done on the specific enthalpy h(T) = c_p T + L clamp((T - T_lo)/dT, 0, 1), whose
+// derivative is exactly the apparent capacity: h^{n+1} = h(T^n) + dt q, T^{n+1} = h^{-1}(h^{n+1})
+// with q the conduction (and source) power per unit mass. Energy sum m h is then conserved
+// by the symmetric pair fluxes whatever the step size.
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +39,23 @@ struct DiffusionMaterial {
   double capacity = 1;     // c_p (1 for a concentration)
   double density = 1;      // rho of rigid particles (their density column holds the dummy value)
   bool fixed = false;
+  // Latent heat L released/absorbed over [latent_lo, latent_hi] (0: none).
+  double latent = 0, latent_lo = 0, latent_hi = 0;
+
+  // Specific enthalpy (energy per unit mass) at value T; c_p T without latent heat.
+  double enthalpy(double T) const {
+    double h = capacity * T;
+    if (latent > 0) h += latent * std::clamp((T - latent_lo) / (latent_hi - latent_lo), 0.0, 1.0);
+    return h;
+  }
+  // The inverse of enthalpy(): h is strictly increasing and piecewise linear.
+  double value_of(double h) const {
+    if (latent <= 0) return h / capacity;
+    if (h <= capacity * latent_lo) return h / capacity;
+    if (h >= capacity * latent_hi + latent) return (h - latent) / capacity;
+    const double apparent = capacity + latent / (latent_hi - latent_lo);
+    return latent_lo + (h - capacity * latent_lo) / apparent;
+  }
 };
 
 template <int D, class K>
@@ -52,6 +78,10 @@ class ScalarDiffusion {
 
   Column<double>& values() { return value_; }
   const std::string& name() const { return value_.name(); }
+  // Energy (species mass) per unit mass of a particle of `material` at `value`.
+  double content(std::uint16_t material, double value) const {
+    return mats_[material].enthalpy(value);
+  }
 
   // Prescribed values of the owned wall particles at time t (before the ghost exchange).
   void set_wall_values(double t, const Column<std::uint16_t>& wall_index) {
@@ -120,9 +150,14 @@ class ScalarDiffusion {
         if (r == 0) continue;
         sum += vb * 4.0 * ma.coefficient * kb / ks * (value_[a] - value_[b]) / r * k_.dW(r);
       }
-      rate_[a] = (sum / rho_a + source_ / rho_a) / ma.capacity;
+      rate_[a] = (sum + source_) / rho_a;  // power per unit mass
     }
-    for (std::size_t a = 0; a < n; ++a) value_[a] += dt * rate_[a];
+    for (std::size_t a = 0; a < n; ++a) {
+      if (rate_[a] == 0.0) continue;
+      const DiffusionMaterial& ma = mats_[s_.material[a]];
+      value_[a] = ma.latent > 0 ? ma.value_of(ma.enthalpy(value_[a]) + dt * rate_[a])
+                                : value_[a] + dt * rate_[a] / ma.capacity;
+    }
   }
 
  private:

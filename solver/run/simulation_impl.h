@@ -227,8 +227,20 @@ void Simulation<D, K>::build_transport_units() {
   if (c_.has_thermal()) {
     std::vector<DiffusionMaterial> m;
     for (const auto& pm : c_.materials()) {
-      m.push_back({pm.thermal_conductivity(), pm.has_heat_capacity() ? pm.heat_capacity() : 1.0,
-                   pm.density(), false});
+      DiffusionMaterial dm;
+      dm.coefficient = pm.thermal_conductivity();
+      dm.capacity = pm.has_heat_capacity() ? pm.heat_capacity() : 1.0;
+      dm.density = pm.density();
+      // Both materials of a transition with latent heat take it up over the same interval
+      // (Fuchs 2021 Remark 3), so a particle's enthalpy does not jump when it changes phase.
+      for (const auto& pt : c_.phase_transitions())
+        if (pt.has_latent_heat() &&
+            (pt.solid_material() == pm.name() || pt.fluid_material() == pm.name())) {
+          dm.latent = pt.latent_heat();
+          dm.latent_lo = pt.transition_value() - 0.5 * pt.latent_heat_interval();
+          dm.latent_hi = pt.transition_value() + 0.5 * pt.latent_heat_interval();
+        }
+      m.push_back(dm);
       // Conduction bound 0.1 rho c_p h^2 / kappa (Fuchs 2021 eq. 41).
       if (pm.thermal_conductivity() > 0)
         bound_->add_limit(factor * 0.1 * pm.density() * m.back().capacity * h_ * h_ /
@@ -249,7 +261,11 @@ void Simulation<D, K>::build_transport_units() {
   if (c_.has_diffusion()) {
     std::vector<DiffusionMaterial> m;
     for (const auto& pm : c_.materials()) {
-      m.push_back({pm.diffusivity(), 1.0, pm.density(), pm.fixed_concentration()});
+      DiffusionMaterial dm;
+      dm.coefficient = pm.diffusivity();
+      dm.density = pm.density();
+      dm.fixed = pm.fixed_concentration();
+      m.push_back(dm);
       if (pm.diffusivity() > 0)
         bound_->add_limit(factor * 0.1 * pm.density() * h_ * h_ / pm.diffusivity());
     }
@@ -334,7 +350,8 @@ void Simulation<D, K>::transport_scalars(double dt) {
   }
 }
 
-// Extremes and content (thermal energy sum m c_p T, species mass sum m C) of the scalars.
+// Extremes and content (thermal energy sum m h(T), latent heat included; species mass sum m C)
+// of the scalars.
 template <int D, class K>
 void Simulation<D, K>::sample_scalars() {
   for (int which = 0; which < 2; ++which) {
@@ -349,8 +366,7 @@ void Simulation<D, K>::sample_scalars() {
       const double v = unit->values()[i];
       ext[0] = std::max(ext[0], -v);
       ext[1] = std::max(ext[1], v);
-      const auto& pm = c_.materials(s_.material[i]);
-      content += s_.m[i] * v * (which == 0 && pm.has_heat_capacity() ? pm.heat_capacity() : 1.0);
+      content += s_.m[i] * unit->content(s_.material[i], v);
     }
     comm_.max_inplace(ext);
     content = comm_.sum(content);

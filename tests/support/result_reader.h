@@ -51,6 +51,10 @@ class ResultReader {
     return s;
   }
   Snapshot last() const { return snapshot(snapshot_count() - 1); }
+  // A per-particle dataset of snapshot k that only some runs have (temperature, material).
+  std::vector<double> snapshot_field(int k, const std::string& name) const {
+    return read<double>(group(k) + "/" + name, H5T_NATIVE_DOUBLE);
+  }
   std::vector<double> series(const std::string& name) const {
     return read<double>("/series/" + name, H5T_NATIVE_DOUBLE);
   }

@@ -115,14 +115,35 @@ TEST(CaseValidation, DimensionSpecificShapes) {
   EXPECT_TRUE(has_error(errs, "walls[0].shape.cylinder", "only in 3D cases")) << dump(errs);
 }
 
-TEST(CaseValidation, NotImplementedUnitsAreRejectedNotIgnored) {
+TEST(CaseValidation, LatentHeatNeedsAnIntervalAndTemperature) {
   auto errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
 thermal { }
 phase_transitions { solid_material: "s" fluid_material: "water" driver: TEMPERATURE
                     latent_heat: 2e5 })");
-  EXPECT_TRUE(has_error(errs, "phase_transitions[0].latent_heat", "not implemented yet"))
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].latent_heat_interval", "is required"))
       << dump(errs);
-  errs = errors_of(R"(open_boundaries { name: "in" })");
+  errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
+thermal { }
+phase_transitions { solid_material: "s" fluid_material: "water" driver: TEMPERATURE
+                    latent_heat: -1 latent_heat_interval: 0 })");
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].latent_heat", "must be > 0")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].latent_heat_interval", "must be > 0"))
+      << dump(errs);
+  errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
+diffusion { }
+phase_transitions { solid_material: "s" fluid_material: "water" driver: CONCENTRATION
+                    latent_heat: 1 latent_heat_interval: 1 })");
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].latent_heat", "needs driver TEMPERATURE"))
+      << dump(errs);
+  errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
+thermal { }
+phase_transitions { solid_material: "s" fluid_material: "water" driver: TEMPERATURE
+                    latent_heat: 2e5 latent_heat_interval: 10 })");
+  for (const auto& e : errs) EXPECT_EQ(e.field.find("latent"), std::string::npos) << dump(errs);
+}
+
+TEST(CaseValidation, NotImplementedUnitsAreRejectedNotIgnored) {
+  auto errs = errors_of(R"(open_boundaries { name: "in" })");
   EXPECT_TRUE(has_error(errs, "open_boundaries[0]", "not implemented yet")) << dump(errs);
   errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
 bodies { name: "b" material: "s" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } }
