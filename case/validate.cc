@@ -522,6 +522,11 @@ class Validator {
       positive(g.max_density_deviation(), "guards.max_density_deviation");
     if (g.has_min_dt_fraction()) positive(g.min_dt_fraction(), "guards.min_dt_fraction");
     if (g.has_max_mach()) positive(g.max_mach(), "guards.max_mach");
+    if (g.has_max_solid_fraction() && (!(g.max_solid_fraction() > 0) || g.max_solid_fraction() > 1))
+      error("guards.max_solid_fraction",
+            "must be in (0, 1] (got " + num(g.max_solid_fraction()) + ")");
+    if (g.has_max_contact_substeps() && g.max_contact_substeps() < 1)
+      error("guards.max_contact_substeps", "must be >= 1");
     non_negative(c_.stop().max_wall_seconds(), "stop.max_wall_seconds");
     non_negative(c_.stop().steady_kinetic_energy(), "stop.steady_kinetic_energy");
   }

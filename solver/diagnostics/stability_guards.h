@@ -2,7 +2,8 @@
 // Stability guards: checks that stop a run with a diagnosis instead of letting it write
 // garbage. Per particle: non-finite state, density deviation |rho/rho0 - 1| past a bound,
 // speed past a multiple of the sound speed (weak compressibility assumes |u| << c), position
-// outside the domain. Per step: dt collapse (checked by the caller on the reduced dt).
+// outside the domain. Per step: dt collapse (checked by the caller on the reduced dt), fluid
+// inside a wall or body (solid_fraction.h), contact too stiff for the step (the caller).
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -18,6 +19,8 @@ struct GuardSettings {
   double max_density_deviation = 0.5;
   double min_dt_fraction = 1e-3;
   double max_mach = 1.0;
+  double max_solid_fraction = 0.97;
+  std::int64_t max_contact_substeps = 10000;
 };
 
 template <int D>
@@ -37,6 +40,22 @@ inline std::string format_vec(const double* x, int d) {
   return buf;
 }
 
+// " at particle id N (kind, material M) at (x, y), step S, t = T": where a guard tripped.
+template <int D>
+std::string describe_particle(const ParticleStore<D>& s, const std::vector<MaterialParams>& mats,
+                              std::size_t i, std::int64_t step, double t) {
+  const char* kind = s.kind[i] == Kind::kFluid  ? "fluid"
+                     : s.kind[i] == Kind::kWall ? "wall"
+                                                : "rigid";
+  std::string mat = s.material[i] < mats.size() ? mats[s.material[i]].name : "-";
+  char buf[160];
+  std::snprintf(buf, sizeof buf, " at particle id %lld (%s, material %s) at ",
+                static_cast<long long>(s.id[i]), kind, mat.c_str());
+  char tail[96];
+  std::snprintf(tail, sizeof tail, ", step %lld, t = %.9g", static_cast<long long>(step), t);
+  return buf + format_vec(s.x[i].data(), D) + tail;
+}
+
 template <int D>
 GuardScan<D> scan_particles(const ParticleStore<D>& s, const std::vector<FluidConstants>& fluids,
                             const std::vector<MaterialParams>& mats, const GuardSettings& g,
@@ -44,17 +63,7 @@ GuardScan<D> scan_particles(const ParticleStore<D>& s, const std::vector<FluidCo
                             std::int64_t step, double t) {
   GuardScan<D> out;
   auto fail = [&](std::size_t i, const std::string& what) {
-    if (!out.violation.empty()) return;
-    const char* kind = s.kind[i] == Kind::kFluid  ? "fluid"
-                       : s.kind[i] == Kind::kWall ? "wall"
-                                                  : "rigid";
-    std::string mat = s.material[i] < mats.size() ? mats[s.material[i]].name : "-";
-    char buf[160];
-    std::snprintf(buf, sizeof buf, " at particle id %lld (%s, material %s) at ",
-                  static_cast<long long>(s.id[i]), kind, mat.c_str());
-    char tail[96];
-    std::snprintf(tail, sizeof tail, ", step %lld, t = %.9g", static_cast<long long>(step), t);
-    out.violation = what + buf + format_vec(s.x[i].data(), D) + tail;
+    if (out.violation.empty()) out.violation = what + describe_particle(s, mats, i, step, t);
   };
   for (std::size_t i = 0; i < s.owned(); ++i) {
     const Vec<D>& x = s.x[i];

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -25,6 +26,7 @@
 #include "solver/core/particle_store.h"
 #include "solver/diagnostics/conservation.h"
 #include "solver/diagnostics/probes.h"
+#include "solver/diagnostics/solid_fraction.h"
 #include "solver/diagnostics/stability_guards.h"
 #include "solver/integrate/kick_drift_kick.h"
 #include "solver/integrate/time_step.h"
@@ -115,6 +117,8 @@ class Simulation {
   Column<std::uint16_t> no_walls_{"wall_index", "walls", false};
   void sample_bodies();
   void integrate_step(double dt);
+  // Contact sub-steps the coming step of length dt needs (1 when bodies cannot touch).
+  int contact_substeps(double dt) const;
   struct EndOfStep {
     double max_speed = 0, max_acceleration = 0, max_density_dev = 0, min_contact_distance = 0;
     bool violated = false, cancel = false, interrupt = false, checkpoint = false,
@@ -188,6 +192,8 @@ class Simulation {
   std::string last_checkpoint_;
   bool last_step_had_snapshot_ = false;
   double comm_seconds_ = 0;
+  double solid_fraction_ = 0;  // largest fluid solid fraction after the last step
+  double min_contact_distance_ = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace sph

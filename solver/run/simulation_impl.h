@@ -52,6 +52,8 @@ Simulation<D, K>::Simulation(const v1::Case& c, const Comm& comm, const RunOptio
   if (g.has_max_density_deviation()) guards_.max_density_deviation = g.max_density_deviation();
   if (g.has_min_dt_fraction()) guards_.min_dt_fraction = g.min_dt_fraction();
   if (g.has_max_mach()) guards_.max_mach = g.max_mach();
+  if (g.has_max_solid_fraction()) guards_.max_solid_fraction = g.max_solid_fraction();
+  if (g.has_max_contact_substeps()) guards_.max_contact_substeps = g.max_contact_substeps();
   build_units();
 }
 
@@ -189,6 +191,8 @@ void Simulation<D, K>::build_units() {
   // Bounding box of the fluid (e.g. the surge front of a dam break).
   result_.add_series("diagnostics/fluid_min", {static_cast<std::uint64_t>(D)});
   result_.add_series("diagnostics/fluid_max", {static_cast<std::uint64_t>(D)});
+  if (walls_) result_.add_series("diagnostics/max_solid_fraction");
+  if (contact_) result_.add_series("diagnostics/min_contact_distance");
   if (bodies_) {
     body_slots_ = phase_ ? phase_->max_bodies() : static_cast<std::size_t>(c_.bodies_size());
     const auto nb = static_cast<std::uint64_t>(body_slots_);
@@ -562,13 +566,8 @@ void Simulation<D, K>::move_bodies(double dt) {
   Timer tm(timer(RigidBodies<D>::kName));
   if (contact_) {
     Timer tc(timer(SpringDashpotContact<D>::kName));
-    const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
     // Substep only when bodies may touch during this step; otherwise one drift.
-    const int n = contact_possible_
-                      ? std::max(1, static_cast<int>(std::ceil(
-                                        dt / (factor * contact_->time_step(min_rigid_mass_)))))
-                      : 1;
-    contact_->drift(nl_, dt, n, t_ + dt, comm_);
+    contact_->drift(nl_, dt, contact_substeps(dt), t_ + dt, comm_);
   } else {
     bodies_->drift(dt, t_ + dt);
   }
@@ -643,6 +642,18 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
   const auto vmin_dom = detail::to_vec<D>(c_.domain().lo());
   GuardScan<D> scan =
       scan_particles<D>(s_, fluids_, mats_, guards_, vmin_dom, vmax_dom, grid_.periodic, step_, t_);
+  SolidFractionScan solid;
+  if (walls_) {
+    solid = solid_fraction<D, K>(s_, nl_, kernel_, wall_volume_);
+    if (scan.violation.empty() && solid.max > guards_.max_solid_fraction) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "fluid inside a wall or body: solid fraction %.3f of its kernel support "
+                    "exceeds %.3g (guards.max_solid_fraction)",
+                    solid.max, guards_.max_solid_fraction);
+      scan.violation = buf + describe_particle(s_, mats_, solid.worst, step_, t_);
+    }
+  }
   std::vector<double> r = {
       scan.max_speed,
       scan.max_acceleration,
@@ -655,7 +666,8 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
               MPI_Wtime() - wall_start_ >= c_.stop().max_wall_seconds()
           ? 1.0
           : 0.0,
-      -nl_.min_contact_distance()};
+      -nl_.min_contact_distance(),
+      solid.max};
   const double t0 = MPI_Wtime();
   comm_.max_inplace(r);
   comm_seconds_ += MPI_Wtime() - t0;
@@ -669,6 +681,8 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
   e.checkpoint = r[6] > 0;
   e.out_of_time = r[7] > 0;
   e.min_contact_distance = -r[8];
+  solid_fraction_ = r[9];
+  min_contact_distance_ = e.min_contact_distance;
   if (e.violated) e.diagnosis = comm_.first_non_empty(scan.violation);
   return e;
 }
@@ -715,6 +729,8 @@ void Simulation<D, K>::sample_series() {
   put("max_speed", vmax);
   put("imbalance", imbalance_);
   put("fluid_particles", cs.fluid_particles);
+  if (walls_) put("max_solid_fraction", solid_fraction_);
+  if (contact_) put("min_contact_distance", min_contact_distance_);
   result_.append_series("diagnostics/momentum",
                         std::vector<double>(cs.momentum.data(), cs.momentum.data() + D));
   if (bodies_) sample_bodies();
@@ -960,6 +976,9 @@ void Simulation<D, K>::start() {
                 : bound_->dt(comm_.max(scan.max_speed), comm_.max(scan.max_acceleration));
       dt0_ = dt_;
     }
+    if (walls_)
+      solid_fraction_ = comm_.max(solid_fraction<D, K>(s_, nl_, kernel_, wall_volume_).max);
+    if (contact_) min_contact_distance_ = comm_.min(nl_.min_contact_distance());
     result_.create(metadata("running"));
     maybe_rebalance();
     sample_series();
@@ -988,8 +1007,32 @@ void Simulation<D, K>::start() {
 }
 
 template <int D, class K>
+int Simulation<D, K>::contact_substeps(double dt) const {
+  if (!contact_ || !contact_possible_) return 1;
+  const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
+  const double n = std::ceil(dt / (factor * contact_->time_step(min_rigid_mass_)));
+  return n > 2e9 ? std::numeric_limits<int>::max() : std::max(1, static_cast<int>(n));
+}
+
+template <int D, class K>
 typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
-  integrate_step(schedule_.clip(t_, dt_, next_output_));
+  const double dt = schedule_.clip(t_, dt_, next_output_);
+  // Checked before the step, so the state that stops the run is still the last good one.
+  if (const int n = contact_substeps(dt); n > guards_.max_contact_substeps) {
+    StepReport rep;
+    rep.violated = true;
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "contact too stiff for the time step: k_c = %.4g needs %d contact sub-steps of "
+                  "%.3e per fluid step of %.3e (guards.max_contact_substeps = %lld) at step "
+                  "%lld, t = %.9g",
+                  c_.contact().stiffness(), n, dt / n, dt,
+                  static_cast<long long>(guards_.max_contact_substeps),
+                  static_cast<long long>(step_), t_);
+    rep.diagnosis = buf;
+    return rep;
+  }
+  integrate_step(dt);
   if (std::string why = apply_phase_transitions(); !why.empty()) {
     StepReport rep;
     rep.violated = true;
