@@ -8,6 +8,13 @@
 //   A = rho u (u~ - u)  (transport velocity only)
 // plus the background-pressure acceleration that defines the transport velocity:
 //   a~_i = -p_b,i/m_i sum_j (V_i^2 + V_j^2) grad W_ij.
+// At a free surface the background-pressure term of the transport velocity pulls the surface
+// particles inwards (their missing neighbours leave sum_j grad W_ij unbalanced), which
+// compresses a free-surface flow until it fails. Particles whose kernel support is incomplete,
+// sigma_i = V_i W(0) + sum_j V_j W_ij < 0.95 (walls and bodies count as filled), therefore keep
+// only the component of a~ tangential to the surface, whose normal is -sum_j V_j grad W_ij:
+// the free-surface treatment of particle shifting (Lind, Xu, Stansby, Rogers 2012, sec. 3.2;
+// Sun, Colagrossi, Marrone, Zhang 2017, delta+-SPH). Confined flows never see it.
 // Wall and rigid neighbours act through the values of the wall condition: pressure (eq. 27),
 // density (eq. 28, for the fluid of particle i), the extrapolated no-slip velocity
 // (eq. 23) in the viscous term (left out at free-slip walls), and no artificial viscosity
@@ -65,6 +72,9 @@ struct DummyPair {
   }
 };
 
+// Kernel support completeness below which a particle is in the free-surface zone.
+inline constexpr double kFreeSurfaceCompleteness = 0.95;
+
 template <int D, class K, bool kViscous, bool kArtVisc, bool kTransport>
 void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const K& k,
                           const FluidForceInputs<D>& in) {
@@ -86,6 +96,9 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
     Vec<D> acc = Vec<D>::Zero();  // times m_i
     Vec<D> acc_av = Vec<D>::Zero();
     Vec<D> acc_bg = Vec<D>::Zero();
+    Vec<D> grad_sum = Vec<D>::Zero();  // sum_j V_j grad W_ij (free-surface normal)
+    double sigma = 0;                  // kernel support completeness
+    if constexpr (kTransport) sigma = Vi * k.W(0.0);
     Vec<D> dui = Vec<D>::Zero();
     if constexpr (kTransport) dui = (*in.transport)[i] - vi;
     const DummyPair<D, kViscous, kTransport> dummy{fi, rhoi, pi, Vi2, vi, dui};
@@ -107,6 +120,8 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
         }
         if constexpr (kTransport) {
           acc_bg -= s2 * gradW;
+          sigma += Vj * k.W(r);
+          grad_sum += Vj * gradW;
           const Vec<D> duj = (*in.transport)[j] - v[j];
           // 1/2 (A_i + A_j) . grad W with A = rho u (u~ - u)^T.
           acc += (0.5 * s2) * (rhoi * dui.dot(gradW) * vi + rhoj * duj.dot(gradW) * v[j]);
@@ -124,11 +139,20 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
         double s2 = 0;
         acc += dummy(gradW, dwdr, r, p[j], rho[j], (*in.wall_fluid)[j] == mat[i], (*in.noslip)[j],
                      in.free_slip && (*in.free_slip)[j], in.wall_volume, s2);
-        if constexpr (kTransport) acc_bg -= s2 * gradW;
+        if constexpr (kTransport) {
+          acc_bg -= s2 * gradW;
+          sigma += in.wall_volume * k.W(r);
+          grad_sum += in.wall_volume * gradW;
+        }
       }
     }
     s.a[i] = acc / mi + acc_av + in.body;
-    if constexpr (kTransport) (*in.background)[i] = (fi.pb / mi) * acc_bg;
+    if constexpr (kTransport) {
+      Vec<D> bg = (fi.pb / mi) * acc_bg;
+      const double g2 = grad_sum.squaredNorm();
+      if (sigma < kFreeSurfaceCompleteness && g2 > 0) bg -= (bg.dot(grad_sum) / g2) * grad_sum;
+      (*in.background)[i] = bg;
+    }
   }
 }
 

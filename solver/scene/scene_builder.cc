@@ -121,6 +121,15 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
         p.v.x() -= tg.amplitude() * std::cos(k * p.x.x()) * std::sin(k * p.x.y());
         p.v.y() += tg.amplitude() * std::sin(k * p.x.x()) * std::cos(k * p.x.y());
       }
+      if (region.initial_velocity_field().has_linear()) {
+        const auto& lf = region.initial_velocity_field().linear();
+        const Point3 r = p.x - to_point(lf.center());
+        const Point3 gx = to_point(lf.gradient_x()), gy = to_point(lf.gradient_y()),
+                     gz = to_point(lf.gradient_z());
+        p.v.x() += gx.dot(r);
+        p.v.y() += gy.dot(r);
+        p.v.z() += gz.dot(r);
+      }
       p.rho = m.rho0;
       if (region.has_hydrostatic_surface() && g.norm() > 0) {
         // p = rho0 |g| (surface - height), height measured along -g; the density follows
