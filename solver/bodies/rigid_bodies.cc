@@ -218,8 +218,13 @@ void RigidBodies<D>::update_accelerations(double t) {
   for (RigidBody<D>& b : bodies_) {
     if (!b.active()) continue;
     if (b.motion == BodyMotion::kFree) {
-      b.acceleration = (b.fluid_force + b.contact_force) / b.mass + body_force(b, t);
-      AngVec<D> m = b.fluid_torque + b.contact_torque;
+      // The contact reaches the fluid's wall condition only as far as it holds the body
+      // against its other forces (see RigidBody::mean_contact_force).
+      const Vec<D> smooth = b.fluid_force + b.mass * body_force(b, t);
+      const double fc = b.mean_contact_force.norm();
+      const double share = fc > smooth.norm() ? smooth.norm() / fc : 1.0;
+      b.acceleration = (smooth + share * b.mean_contact_force) / b.mass;
+      AngVec<D> m = b.fluid_torque + share * b.mean_contact_torque;
       if constexpr (D == 3)
         m -= AngVec<D>(Eigen::Vector3d(b.omega).cross(Eigen::Vector3d(b.angular_momentum)));
       b.angular_acceleration = b.inverse_inertia(m);

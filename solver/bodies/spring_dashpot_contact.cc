@@ -64,8 +64,8 @@ void SpringDashpotContact<D>::evaluate(const NeighborList<D>& nl, const Comm& co
                 const PairKey key{s_.id[i], s_.id[*jp]};
                 auto it = history_.find(key);
                 Vec<D> delta = it == history_.end() ? Vec<D>::Zero() : it->second;
-                delta -= delta.dot(e) * e;             // into the current tangent plane
-                delta += h * (vij - vij.dot(e) * e);   // tangential relative motion
+                delta -= delta.dot(e) * e;            // into the current tangent plane
+                delta += h * (vij - vij.dot(e) * e);  // tangential relative motion
                 Vec<D> ft = -kt_ * delta;
                 const double cap = mu_ * -fn, mag = ft.norm();
                 if (mag > cap) {  // sliding: Coulomb limit
@@ -100,8 +100,13 @@ void SpringDashpotContact<D>::drift(const NeighborList<D>& nl, double dt, int su
   snapshot_step_start();
   auto& bs = bodies_.bodies();
   const double h = dt / substeps;
+  impulse_.assign(bs.size(), Vec<D>::Zero());
+  angular_impulse_.assign(bs.size(), AngVec<D>::Zero());
   auto contact_kick = [&](double tau) {
-    for (RigidBody<D>& b : bs) {
+    for (std::size_t k = 0; k < bs.size(); ++k) {
+      RigidBody<D>& b = bs[k];
+      impulse_[k] += tau * b.contact_force;
+      angular_impulse_[k] += tau * b.contact_torque;
       if (!b.moves_freely()) continue;
       b.velocity += tau / b.mass * b.contact_force;
       if constexpr (D == 2) {
@@ -118,6 +123,10 @@ void SpringDashpotContact<D>::drift(const NeighborList<D>& nl, double dt, int su
     bodies_.drift(h, t_end - dt + (k + 1) * h);
     evaluate(nl, comm, h);
     contact_kick(0.5 * h);
+  }
+  for (std::size_t k = 0; k < bs.size(); ++k) {
+    bs[k].mean_contact_force = dt > 0 ? Vec<D>(impulse_[k] / dt) : bs[k].contact_force;
+    bs[k].mean_contact_torque = dt > 0 ? AngVec<D>(angular_impulse_[k] / dt) : bs[k].contact_torque;
   }
 }
 
@@ -151,7 +160,8 @@ void SpringDashpotContact<D>::migrate_history(Halo<D>& halo) {
       Vec<D> delta;
       std::memcpy(&key.first, buf.data() + at, sizeof(ParticleId));
       std::memcpy(&key.second, buf.data() + at + sizeof(ParticleId), sizeof(ParticleId));
-      std::memcpy(static_cast<void*>(&delta), buf.data() + at + 2 * sizeof(ParticleId), sizeof(Vec<D>));
+      std::memcpy(static_cast<void*>(&delta), buf.data() + at + 2 * sizeof(ParticleId),
+                  sizeof(Vec<D>));
       history_[key] = delta;
     }
 }
@@ -182,7 +192,8 @@ void SpringDashpotContact<D>::save(std::map<std::string, double>& state, const C
     Vec<D> delta;
     std::memcpy(&r, all.data() + p, sizeof(ParticleId));
     std::memcpy(&j, all.data() + p + sizeof(ParticleId), sizeof(ParticleId));
-    std::memcpy(static_cast<void*>(&delta), all.data() + p + 2 * sizeof(ParticleId), sizeof(Vec<D>));
+    std::memcpy(static_cast<void*>(&delta), all.data() + p + 2 * sizeof(ParticleId),
+                sizeof(Vec<D>));
     const std::string k = "friction." + std::to_string(r) + "." + std::to_string(j) + ".";
     for (int a = 0; a < D; ++a) state[k + std::to_string(a)] = delta[a];
   }
@@ -191,7 +202,8 @@ void SpringDashpotContact<D>::save(std::map<std::string, double>& state, const C
 template <int D>
 void SpringDashpotContact<D>::load(const std::map<std::string, double>& state) {
   history_.clear();
-  for (auto it = state.lower_bound("friction."); it != state.end() && it->first.rfind("friction.", 0) == 0; ++it) {
+  for (auto it = state.lower_bound("friction.");
+       it != state.end() && it->first.rfind("friction.", 0) == 0; ++it) {
     // friction.<id_r>.<id_j>.<component>
     const std::string& k = it->first;
     const std::size_t a = k.find('.', 9), b = k.find('.', a + 1);

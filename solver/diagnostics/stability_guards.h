@@ -19,7 +19,7 @@ struct GuardSettings {
   double max_density_deviation = 0.5;
   double min_dt_fraction = 1e-3;
   double max_mach = 1.0;
-  double max_solid_fraction = 0.97;
+  double max_solid_fraction = 0.9;
   std::int64_t max_contact_substeps = 10000;
 };
 

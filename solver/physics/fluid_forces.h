@@ -39,10 +39,12 @@ struct FluidForceInputs {
   double alpha = 0;                                   // artificial viscosity (Adami 2012 eq. 11)
   const Column<Vec<D>>* noslip = nullptr;             // wall no-slip velocity (eq. 23)
   const Column<std::uint16_t>* wall_fluid = nullptr;  // fluid whose EOS gave rho_w
-  const Column<std::uint8_t>* free_slip = nullptr;    // per wall particle, or nullptr
-  Column<Vec<D>>* transport = nullptr;                // u~ (TVF)
-  Column<Vec<D>>* background = nullptr;               // a~ (TVF)
-  Column<Vec<D>>* rigid_force = nullptr;              // fluid force on each rigid particle (output)
+  const Column<double>* wall_p2 = nullptr;            // p_w of a second fluid (or null)
+  const Column<std::uint16_t>* wall_fluid2 = nullptr;  // that fluid
+  const Column<std::uint8_t>* free_slip = nullptr;     // per wall particle, or nullptr
+  Column<Vec<D>>* transport = nullptr;                 // u~ (TVF)
+  Column<Vec<D>>* background = nullptr;                // a~ (TVF)
+  Column<Vec<D>>* rigid_force = nullptr;  // fluid force on each rigid particle (output)
 };
 
 // What fluid particle i receives from dummy (wall or rigid) particle j, times m_i: pressure
@@ -74,6 +76,16 @@ struct DummyPair {
 
 // Kernel support completeness below which a particle is in the free-surface zone.
 inline constexpr double kFreeSurfaceCompleteness = 0.95;
+
+// The pressure dummy j presents to fluid material m (WallBoundary: one p_w per fluid at a wall
+// where two fluids meet) and whether its stored density belongs to that fluid.
+template <int D>
+inline double dummy_pressure(const FluidForceInputs<D>& in, const double* p, std::uint32_t j,
+                             std::uint16_t m, bool& same_fluid) {
+  same_fluid = (*in.wall_fluid)[j] == m;
+  if (!same_fluid && in.wall_fluid2 && (*in.wall_fluid2)[j] == m) return (*in.wall_p2)[j];
+  return p[j];
+}
 
 template <int D, class K, bool kViscous, bool kArtVisc, bool kTransport>
 void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const K& k,
@@ -137,7 +149,9 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
         }
       } else {
         double s2 = 0;
-        acc += dummy(gradW, dwdr, r, p[j], rho[j], (*in.wall_fluid)[j] == mat[i], (*in.noslip)[j],
+        bool same = false;
+        const double pj = dummy_pressure(in, p, j, mat[i], same);
+        acc += dummy(gradW, dwdr, r, pj, rho[j], same, (*in.noslip)[j],
                      in.free_slip && (*in.free_slip)[j], in.wall_volume, s2);
         if constexpr (kTransport) {
           acc_bg -= s2 * gradW;
@@ -179,8 +193,10 @@ void compute_rigid_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, cons
       if constexpr (kTransport) dui = (*in.transport)[i] - s.v[i];
       const DummyPair<D, kViscous, kTransport> dummy{fi, s.rho[i], s.p[i], Vi * Vi, s.v[i], dui};
       double s2 = 0;
-      f -= dummy(gradW, dwdr, dist, s.p[r], s.rho[r], (*in.wall_fluid)[r] == s.material[i],
-                 (*in.noslip)[r], false, in.wall_volume, s2);
+      bool same = false;
+      const double pr =
+          dummy_pressure(in, s.p.data(), static_cast<std::uint32_t>(r), s.material[i], same);
+      f -= dummy(gradW, dwdr, dist, pr, s.rho[r], same, (*in.noslip)[r], false, in.wall_volume, s2);
     }
     force[r] = f;
   }

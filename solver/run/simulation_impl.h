@@ -526,7 +526,11 @@ void Simulation<D, K>::apply_wall_condition() {
         s_.has("wall_acceleration") ? &s_.template get<Vec<D>>("wall_acceleration") : nullptr);
   }
   Timer tm(timer("halo_exchange"));
-  halo_.update(s_, {&s_.rho, &s_.p, &walls_->noslip_velocity(), &walls_->fluid_material()});
+  if (walls_->second_pressure())
+    halo_.update(s_, {&s_.rho, &s_.p, &walls_->noslip_velocity(), &walls_->fluid_material(),
+                      walls_->second_pressure(), walls_->second_fluid_material()});
+  else
+    halo_.update(s_, {&s_.rho, &s_.p, &walls_->noslip_velocity(), &walls_->fluid_material()});
 }
 
 template <int D, class K>
@@ -541,6 +545,8 @@ void Simulation<D, K>::compute_forces() {
   if (walls_) {
     in.noslip = &walls_->noslip_velocity();
     in.wall_fluid = &walls_->fluid_material();
+    in.wall_p2 = walls_->second_pressure();
+    in.wall_fluid2 = walls_->second_fluid_material();
   }
   in.free_slip = free_slip_;
   in.transport = transport_;
@@ -642,9 +648,22 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
   const auto vmin_dom = detail::to_vec<D>(c_.domain().lo());
   GuardScan<D> scan =
       scan_particles<D>(s_, fluids_, mats_, guards_, vmin_dom, vmax_dom, grid_.periodic, step_, t_);
+  // Temperature and concentration are state too: an explicit diffusion step past its bound
+  // (Fuchs 2021 eq. 41) overflows them while the flow is still sound.
+  for (ScalarDiffusion<D, K>* unit :
+       {heat_ ? &*heat_ : nullptr, concentration_ ? &*concentration_ : nullptr}) {
+    if (!unit || !scan.violation.empty()) continue;
+    for (std::size_t i = 0; i < s_.owned(); ++i)
+      if (s_.kind[i] != Kind::kWall && !std::isfinite(unit->values()[i])) {
+        scan.violation = "non-finite " + unit->name() + describe_particle(s_, mats_, i, step_, t_);
+        break;
+      }
+  }
   SolidFractionScan solid;
   if (walls_) {
-    solid = solid_fraction<D, K>(s_, nl_, kernel_, wall_volume_);
+    solid = solid_fraction<D, K>(s_, nl_, kernel_, wall_volume_,
+                                 wall_index_ ? wall_index_->data() : nullptr,
+                                 bodies_ ? bodies_->body_index().data() : nullptr);
     if (scan.violation.empty() && solid.max > guards_.max_solid_fraction) {
       char buf[160];
       std::snprintf(buf, sizeof buf,
@@ -977,7 +996,11 @@ void Simulation<D, K>::start() {
       dt0_ = dt_;
     }
     if (walls_)
-      solid_fraction_ = comm_.max(solid_fraction<D, K>(s_, nl_, kernel_, wall_volume_).max);
+      solid_fraction_ =
+          comm_.max(solid_fraction<D, K>(s_, nl_, kernel_, wall_volume_,
+                                         wall_index_ ? wall_index_->data() : nullptr,
+                                         bodies_ ? bodies_->body_index().data() : nullptr)
+                        .max);
     if (contact_) min_contact_distance_ = comm_.min(nl_.min_contact_distance());
     result_.create(metadata("running"));
     maybe_rebalance();

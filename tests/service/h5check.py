@@ -3,6 +3,7 @@
 
   h5check.py snapshots FILE N_PARTICLES T0 T1 ...   the snapshots hold N particles at these times
   h5check.py same FILE_A FILE_B                     same snapshot times, identical snapshots (by id)
+  h5check.py finite FILE                            at least one snapshot, every value finite
 """
 import sys
 
@@ -43,10 +44,23 @@ def check_same(path_a, path_b):
     print(f"{len(times_a)} snapshots identical (t = {times_a[0]} ... {times_a[-1]})")
 
 
+def check_finite(path):
+    snaps = snapshots(path)
+    if not snaps:
+        sys.exit(f"{path}: no snapshots")
+    for t, data in snaps:
+        for key in ("position", "velocity", "density", "pressure"):
+            if not np.all(np.isfinite(data[key])):
+                sys.exit(f"{path}: t={t}: {key} is not finite")
+    print(f"{path}: {len(snaps)} snapshots, all finite (last t = {snaps[-1][0]})")
+
+
 if __name__ == "__main__":
     if len(sys.argv) >= 4 and sys.argv[1] == "snapshots":
         check_snapshots(sys.argv[2], int(sys.argv[3]), [float(t) for t in sys.argv[4:]])
     elif len(sys.argv) == 4 and sys.argv[1] == "same":
         check_same(sys.argv[2], sys.argv[3])
+    elif len(sys.argv) == 3 and sys.argv[1] == "finite":
+        check_finite(sys.argv[2])
     else:
         sys.exit(__doc__)

@@ -58,6 +58,33 @@ class ResultReader {
   std::vector<double> series(const std::string& name) const {
     return read<double>("/series/" + name, H5T_NATIVE_DOUBLE);
   }
+  bool has_series(const std::string& name) const {
+    // H5Lexists needs every intermediate group to exist.
+    std::string path = "/series";
+    if (H5Lexists(file_, path.c_str(), H5P_DEFAULT) <= 0) return false;
+    std::size_t from = 0;
+    while (from <= name.size()) {
+      const std::size_t slash = name.find('/', from);
+      path.append(1, '/').append(name, from,
+                                 slash == std::string::npos ? std::string::npos : slash - from);
+      if (H5Lexists(file_, path.c_str(), H5P_DEFAULT) <= 0) return false;
+      if (slash == std::string::npos) break;
+      from = slash + 1;
+    }
+    return true;
+  }
+  // Extents of a series dataset: {samples, ...}.
+  std::vector<std::size_t> series_shape(const std::string& name) const {
+    hid_t d = H5Dopen2(file_, ("/series/" + name).c_str(), H5P_DEFAULT);
+    if (d < 0) throw std::runtime_error("no series " + name);
+    hid_t sp = H5Dget_space(d);
+    const int rank = H5Sget_simple_extent_ndims(sp);
+    std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
+    H5Sget_simple_extent_dims(sp, dims.data(), nullptr);
+    H5Sclose(sp);
+    H5Dclose(d);
+    return std::vector<std::size_t>(dims.begin(), dims.end());
+  }
   std::string meta(const std::string& name) const {
     hid_t g = H5Gopen2(file_, "/meta", H5P_DEFAULT);
     hid_t a = H5Aopen(g, name.c_str(), H5P_DEFAULT);

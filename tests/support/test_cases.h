@@ -16,9 +16,14 @@ inline v1::Case load_case(const std::string& name) {
   return load_case_file(source_dir() + "/cases/" + name + ".textproto");
 }
 
+// Where output_dir(name) puts a run's files (without clearing it).
+inline std::string output_dir_path(const std::string& name) {
+  return std::string(SPHD_BINARY_DIR) + "/test-output/" + name;
+}
+
 // A fresh output directory under the build tree, unique per test.
 inline std::string output_dir(const std::string& name) {
-  const std::string dir = std::string(SPHD_BINARY_DIR) + "/test-output/" + name;
+  const std::string dir = output_dir_path(name);
   std::filesystem::remove_all(dir);
   return dir;
 }

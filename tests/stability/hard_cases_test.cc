@@ -1,0 +1,178 @@
+// The stability suite (issue: hard cases stay numerically stable): deliberately hard cases
+// run long, each asserting no blow-up (every diagnostic finite, the run completes), bounded
+// density deviation, no fluid inside walls or bodies, no spurious growth of the mechanical
+// energy, exact mass and, where it must hold, momentum. ctest runs reduced versions (coarser
+// dx, shorter); SPHD_STABILITY_FULL=1 runs the case files as shipped (tests/stability/run.sh,
+// which also writes docs/stability.md). The figures over time are printed for the log.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+
+#include "tests/stability/stability_figures.h"
+#include "tests/support/test_cases.h"
+
+namespace sph {
+namespace {
+
+bool full_size() {
+  const char* v = std::getenv("SPHD_STABILITY_FULL");
+  return v && std::string(v) == "1";
+}
+
+// Runs case `name` (reduced unless full size: `reduce` edits it), prints the figures.
+test::StabilityFigures run_hard_case(const std::string& name,
+                                     const std::function<void(v1::Case&)>& reduce,
+                                     const std::vector<double>& body_gravity = {}) {
+  v1::Case c = test::load_case(name);
+  if (!full_size()) reduce(c);
+  const std::string out = test::output_dir("stability_" + name);
+  const RunOutcome r = test::run(c, out);
+  EXPECT_EQ(r.status, RunStatus::kCompleted) << name << ": " << r.message;
+  auto f = test::read_stability_figures(out + "/result.h5", body_gravity);
+  std::printf("%s: dx = %g, t_end = %g, %lld steps, %.1f s wall (%s)\n", name.c_str(), c.dx(),
+              c.time().end_time(), static_cast<long long>(r.steps), r.wall_seconds,
+              full_size() ? "full size" : "reduced for CI");
+  test::print_stability_table(name, f);
+  EXPECT_TRUE(f.all_finite) << name;
+  return f;
+}
+
+// Mechanical energy may only grow by `tol` times the largest kinetic energy seen after `t0`
+// (no forcing after t0): SPH dissipates, it must not create energy.
+void expect_no_energy_growth(const test::StabilityFigures& f, double t0, double tol,
+                             const char* what) {
+  const std::size_t k0 = f.index_at(t0);
+  double growth = 0, scale = 0;
+  for (std::size_t k = k0; k < f.t.size(); ++k) {
+    growth = std::max(growth, f.energy(k) - f.energy(k0));
+    scale = std::max(scale, std::abs(f.energy(k) - f.energy(k0)));
+  }
+  double kin = 0;
+  for (std::size_t k = k0; k < f.t.size(); ++k)
+    kin = std::max(kin, std::abs(f.energy(k) - f.energy(f.t.size() - 1)));
+  std::printf("%s: energy growth after t = %g: %.3e (%.2f%% of the energy that changed, %.3e)\n",
+              what, t0, growth, scale > 0 ? 100 * growth / scale : 0.0, scale);
+  EXPECT_LE(growth, tol * std::max(scale, 1e-300)) << what;
+}
+
+TEST(Stability, ColagrossiDamBreakThroughSixImpacts) {
+  // The plunging dam break runs back and forth; t = 20 (t sqrt(g/H)) covers six impacts on
+  // the side walls at full size. CI: dx 0.04, t = 8 (the first impact and the plunging jet).
+  const auto f = run_hard_case("colagrossi_dambreak_2d", [](v1::Case& c) {
+    c.set_dx(0.04);
+    c.mutable_time()->set_end_time(8);
+    c.clear_probes();
+  });
+  EXPECT_LE(f.max_of(f.density_deviation), 0.1);
+  EXPECT_LE(f.max_of(f.solid_fraction), 0.9);
+  EXPECT_LE(f.mass_drift(), 1e-12);
+  expect_no_energy_growth(f, 0.0, 0.01, "colagrossi dam break");
+}
+
+TEST(Stability, TwoPhaseSloshingDensityRatio1000) {
+  // CI: dx 0.04 and the first 1.5 s of shaking; full: dx 0.02, 4 periods of shaking and 13 s
+  // of free decay.
+  const auto f = run_hard_case("two_phase_sloshing_2d", [](v1::Case& c) {
+    c.set_dx(0.04);
+    c.mutable_time()->set_end_time(1.5);
+    c.clear_probes();
+  });
+  EXPECT_LE(f.max_of(f.density_deviation), 0.05);
+  EXPECT_LE(f.max_of(f.solid_fraction), 0.9);
+  EXPECT_LE(f.mass_drift(), 1e-12);
+  if (full_size()) expect_no_energy_growth(f, 16.76, 0.02, "sloshing 1000, free decay");
+}
+
+TEST(Stability, TwoPhaseSloshingDensityRatio100) {
+  const auto f = run_hard_case("two_phase_sloshing_r100_2d", [](v1::Case& c) {
+    c.set_dx(0.04);
+    c.mutable_time()->set_end_time(3);
+    c.clear_probes();
+  });
+  EXPECT_LE(f.max_of(f.density_deviation), 0.05);
+  EXPECT_LE(f.max_of(f.solid_fraction), 0.9);
+  EXPECT_LE(f.mass_drift(), 1e-12);
+  if (full_size()) expect_no_energy_growth(f, 16.76, 0.02, "sloshing 100, free decay");
+}
+
+TEST(Stability, StiffContactPileSettles) {
+  // k_c = 1e8: contact sub-steps 650 times finer than the fluid step. CI: t = 0.45 (the
+  // disks have landed and bounced); full: t = 1.2, the pile at rest.
+  const double factor = (1250.0 - 1000.0) / 1250.0;  // buoyancy-reduced gravity on the disks
+  const auto f =
+      run_hard_case("disk_pile_stiff_2d", [](v1::Case& c) { c.mutable_time()->set_end_time(0.45); },
+                    {0.0, -9.81 * factor});
+  const double dx = 0.00025;
+  EXPECT_LE(f.max_of(f.solid_fraction), 0.9);
+  // No interpenetration: particles of different bodies (or body and wall) never come nearer
+  // than 0.5 dx (contact acts below dx).
+  EXPECT_GE(f.min_of(f.contact_distance), 0.5 * dx);
+  // A fluid particle caught in the closing gap between two disks has nowhere to go: it is
+  // compressed until the contact engages (30% measured at D/dx = 10), below the guard's 50%.
+  EXPECT_LE(f.max_of(f.density_deviation), 0.4);
+  EXPECT_LE(f.mass_drift(), 1e-12);
+  expect_no_energy_growth(f, 0.0, 0.02, "stiff pile");
+}
+
+TEST(Stability, RepeatedMeltingAndSolidification) {
+  // CI: dx 0.04 and one cycle; full: dx 0.02, three cycles.
+  const auto f = run_hard_case("melt_freeze_cycles_2d", [](v1::Case& c) {
+    c.set_dx(0.04);
+    c.mutable_time()->set_end_time(0.6);
+  });
+  EXPECT_LE(f.mass_drift(), 1e-12);  // fluid + bodies: particles only change phase
+  test::ResultReader rr(test::output_dir_path("stability_melt_freeze_cycles_2d") + "/result.h5");
+  const auto tmin = rr.series("diagnostics/temperature_min");
+  const auto tmax = rr.series("diagnostics/temperature_max");
+  EXPECT_GE(f.min_of(tmin), -1 - 1e-12);  // within [initial, wall] bounds
+  EXPECT_LE(f.max_of(tmax), 2 + 1e-12);
+  EXPECT_GT(f.melted.back(), 0);
+  EXPECT_GT(f.solidified.back(), 0);
+  EXPECT_LE(f.max_of(f.density_deviation), 0.05);
+}
+
+TEST(Stability, GastricConstrictionJet) {
+  // The moving constriction drives a jet through its opening while 60 boluses dissolve.
+  // CI: dx 0.4 to t = 0.4 (the jet through the opening); full: the case (dx 0.2, t = 1).
+  const auto f = run_hard_case("gastric_boluses_2d", [](v1::Case& c) {
+    c.set_dx(0.4);
+    c.mutable_time()->set_end_time(0.4);
+  });
+  EXPECT_LE(f.mass_drift(), 1e-12);
+  EXPECT_LE(f.max_of(f.density_deviation, f.index_at(0.05)), 0.2);
+  EXPECT_LE(f.max_of(f.solid_fraction), 0.9);
+}
+
+TEST(Stability, InviscidDropWithTransportVelocity) {
+  // A free surface, no viscosity, transport velocity: the drop must keep its momentum (no
+  // external force: exactly zero up to round-off), lose no mass, gain no energy, and stretch
+  // as Monaghan's 1994 ODE says: b(t) from dA/dt = A^2 (a^2 - b^2)/(a^2 + b^2), da/dt = -A a.
+  const auto f = run_hard_case("elliptic_drop_2d", [](v1::Case& c) { c.set_dx(0.04); });
+  EXPECT_LE(f.max_of(f.momentum), 1e-10 * f.fluid_mass[0]);
+  EXPECT_LE(f.mass_drift(), 1e-12);
+  EXPECT_LE(f.max_of(f.density_deviation), 0.05);
+  expect_no_energy_growth(f, 0.0, 0.001, "inviscid drop");
+  // Semi-axis along y at the end against the ODE.
+  double A = 1, a = 1, t = 0;
+  const double t_end = f.t.back(), h = 1e-6;
+  while (t < t_end - 0.5 * h) {
+    const double b = 1 / a;
+    A += h * A * A * (a * a - b * b) / (a * a + b * b);
+    a -= h * A * a;
+    t += h;
+  }
+  test::ResultReader rr(test::output_dir_path("stability_elliptic_drop_2d") + "/result.h5");
+  const test::Snapshot s = rr.last();
+  double ymax = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) ymax = std::max(ymax, s.position[3 * i + 1]);
+  // The outermost particle centre lies half a spacing inside the surface.
+  const double dx = full_size() ? 0.02 : 0.04, b_sph = ymax + 0.5 * dx;
+  std::printf("inviscid drop: b(t = %g) = %.4f, Monaghan's ODE %.4f (%.2f%%)\n", t_end, b_sph,
+              1 / a, 100 * (b_sph * a - 1));
+  EXPECT_NEAR(b_sph, 1 / a, 0.02 * (1 / a));
+}
+
+}  // namespace
+}  // namespace sph
