@@ -116,7 +116,8 @@ class OpenBoundaries {
       if (z == 0) {
         for (std::size_t b = 0; b < zones_.size(); ++b) {
           const OpenBoundaryZone<D>& o = zones_[b];
-          if (!o.inflow() && o.xi(x) > o.inner_xi() && o.across(x)) {
+          // Entering through the inner face (fluid beyond the far face is not the outflow's).
+          if (!o.inflow() && o.xi(x) > o.inner_xi() && o.xi(x) < o.outer_xi() && o.across(x)) {
             z = zone_[i] = static_cast<std::uint8_t>(b + 1);
             break;
           }
