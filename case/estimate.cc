@@ -62,6 +62,15 @@ CaseEstimate estimate_case(const v1::Case& c) {
   }
   claimed.clear();
   for (auto& s : owned) claimed.push_back(s.get());
+  // Buffers of open boundaries are fluid particles; they claim their region from the fluids.
+  std::vector<std::unique_ptr<Shape>> buffers;
+  for (const auto& o : c.open_boundaries()) {
+    v1::Shape box;
+    *box.mutable_box() = o.region();
+    buffers.push_back(compile_shape(box, d, shell));
+    e.fluid_particles += count_lattice_points(Claimed(*buffers.back(), claimed), spec, clip);
+  }
+  for (auto& b : buffers) claimed.push_back(b.get());
   for (const auto& f : c.fluids()) {
     auto s = compile_shape(f.shape(), d, shell);
     e.fluid_particles += count_lattice_points(Claimed(*s, claimed), spec, clip);

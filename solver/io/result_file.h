@@ -42,6 +42,9 @@ class ResultFile {
     extra_.push_back({&c, H5T_NATIVE_INT32, "Int", 4});
   }
   void add_field(const Column<double>& c) { extra_.push_back({&c, H5T_NATIVE_DOUBLE, "Float", 8}); }
+  void add_field(const Column<std::uint8_t>& c) {
+    extra_.push_back({&c, H5T_NATIVE_UINT8, "UChar", 1});
+  }
 
   template <int D>
   void write_snapshot(const ParticleStore<D>& s, double t, std::int64_t step);

@@ -22,6 +22,7 @@
 #include "solver/bodies/phase_transitions.h"
 #include "solver/bodies/rigid_bodies.h"
 #include "solver/bodies/spring_dashpot_contact.h"
+#include "solver/boundaries/open_boundaries.h"
 #include "solver/core/neighbor_list.h"
 #include "solver/core/particle_store.h"
 #include "solver/diagnostics/conservation.h"
@@ -176,6 +177,12 @@ class Simulation {
   std::vector<std::string> units_;
   std::optional<TimeStepBound> bound_;
   bool fluid_gravity_ = true;
+
+  // Inflow/outflow buffers (solver/boundaries/open_boundaries.h).
+  std::optional<OpenBoundaries<D, K>> open_;
+  void build_open_boundaries();
+  void set_open_boundary_pressure();
+  void apply_open_boundaries_after_forces();
 
   // Run state (what a checkpoint stores besides the particles).
   double t_ = 0, dt_ = 0, dt0_ = 0, next_series_ = 0;

@@ -169,6 +169,7 @@ void Simulation<D, K>::build_units() {
   bound_.emplace(h_, factor, c_max, nu_max, body_ ? body_->max_magnitude() : 0.0);
   build_transport_units();
   build_phase_transitions();
+  build_open_boundaries();
   if (c_.probes_size() > 0) {
     std::vector<ProbeSet<D>> sets;
     for (const auto& p : c_.probes()) {
@@ -330,6 +331,40 @@ std::string Simulation<D, K>::apply_phase_transitions() {
 }
 
 template <int D, class K>
+void Simulation<D, K>::build_open_boundaries() {
+  if (c_.open_boundaries_size() == 0) return;
+  std::vector<OpenBoundaryZone<D>> zones;
+  for (int b = 0; b < c_.open_boundaries_size(); ++b) {
+    const int m = material_index(mats_, c_.open_boundaries(b).material());
+    zones.emplace_back(c_, b, static_cast<std::uint16_t>(m), mats_[static_cast<size_t>(m)].rho0);
+  }
+  open_.emplace(s_, kernel_, std::move(zones), fluids_, wall_volume_);
+  units_.push_back(OpenBoundaries<D, K>::kName);
+  result_.add_field(open_->zone());
+  result_.add_series("open_boundaries/time");
+  for (const auto& z : open_->zones()) result_.add_series("open_boundaries/" + z.name());
+}
+
+// Buffer pressures from the fluid's, then the ghosts' copies.
+template <int D, class K>
+void Simulation<D, K>::set_open_boundary_pressure() {
+  {
+    Timer tm(timer(OpenBoundaries<D, K>::kName));
+    open_->set_pressure(nl_, grid_, halo_.my_box(), fluid_body_force(t_), comm_);
+  }
+  Timer tm(timer("halo_exchange"));
+  halo_.update(s_, {&s_.rho, &s_.p});
+}
+
+template <int D, class K>
+void Simulation<D, K>::apply_open_boundaries_after_forces() {
+  Timer tm(timer(OpenBoundaries<D, K>::kName));
+  open_->after_forces(nl_, grid_, halo_.my_box(), walls_ ? &walls_->noslip_velocity() : nullptr,
+                      free_slip_, background_, heat_ ? &heat_->values() : nullptr,
+                      concentration_ ? &concentration_->values() : nullptr, comm_);
+}
+
+template <int D, class K>
 void Simulation<D, K>::set_wall_scalars(double t) {
   if (!wall_index_) return;
   if (heat_) heat_->set_wall_values(t, *wall_index_);
@@ -406,6 +441,12 @@ double Simulation<D, K>::initial_scalar(const SceneParticle& p, bool temperature
       temperature ? c_.thermal().initial_temperature() : c_.diffusion().initial_concentration();
   switch (p.kind) {
     case Kind::kFluid: {
+      if (p.open >= 0) {
+        const auto& o = c_.open_boundaries(p.open);
+        if (temperature && o.has_temperature()) return o.temperature();
+        if (!temperature && o.has_concentration()) return o.concentration();
+        return fallback;
+      }
       const auto& r = c_.fluids(p.region);
       if (temperature && r.has_initial_temperature()) return r.initial_temperature();
       if (!temperature && r.has_initial_concentration()) return r.initial_concentration();
@@ -475,9 +516,14 @@ void Simulation<D, K>::build_scene() {
     if (free_slip_)
       (*free_slip_)[i] = p.kind == Kind::kWall && c_.walls(p.wall).free_slip() ? 1 : 0;
     if (bodies_) bodies_->body_index()[i] = p.body;
+    if (open_) open_->zone()[i] = p.open >= 0 ? static_cast<std::uint8_t>(p.open + 1) : 0;
   }
   for (std::size_t i = 0; i < kept.size(); ++i)
     if (s_.kind[i] == Kind::kFluid) s_.p[i] = fluids_[s_.material[i]].pressure(s_.rho[i]);
+  if (open_) {
+    open_->ledger().set_next_id(next_id);
+    open_->set_prescribed_velocities(t_, transport_);
+  }
 }
 
 template <int D, class K>
@@ -512,8 +558,11 @@ void Simulation<D, K>::compute_density_and_pressure(double dt) {
     Timer tm(timer("equation_of_state"));
     apply_equation_of_state(s_, fluids_);
   }
-  Timer tm(timer("halo_exchange"));
-  halo_.update(s_, {&s_.rho, &s_.p});
+  {
+    Timer tm(timer("halo_exchange"));
+    halo_.update(s_, {&s_.rho, &s_.p});
+  }
+  if (open_) set_open_boundary_pressure();
 }
 
 template <int D, class K>
@@ -592,6 +641,7 @@ void Simulation<D, K>::prime() {
   compute_density_and_pressure(0.0);
   apply_wall_condition();
   compute_forces();
+  if (open_) apply_open_boundaries_after_forces();
   if (bodies_) {
     if (contact_) {
       contact_->drift(nl_, 0.0, 1, t_, comm_);  // evaluates the initial contact forces
@@ -620,11 +670,16 @@ void Simulation<D, K>::integrate_step(double dt) {
     wall_motion_->run(t_, transport_);
   }
   set_wall_scalars(t_);
+  if (open_) {
+    Timer tm(timer(OpenBoundaries<D, K>::kName));
+    global_particles_ += open_->exchange_particles(t_, comm_);  // inflows refill, outflows delete
+  }
   exchange_and_search();
   compute_density_and_pressure(dt);
   apply_wall_condition();
   transport_scalars(dt);  // Fuchs 2021 eq. 37: rates from T^n at r^{n+1}, rho^{n+1}
   compute_forces();
+  if (open_) apply_open_boundaries_after_forces();
   Timer tm(timer("integrate"));
   kick(s_, 0.5 * dt);
   if (bodies_) {
@@ -753,6 +808,12 @@ void Simulation<D, K>::sample_series() {
   result_.append_series("diagnostics/momentum",
                         std::vector<double>(cs.momentum.data(), cs.momentum.data() + D));
   if (bodies_) sample_bodies();
+  if (open_) {
+    result_.append_series("open_boundaries/time", {t_});
+    for (std::size_t b = 0; b < open_->zones().size(); ++b)
+      result_.append_series("open_boundaries/" + open_->zones()[b].name(),
+                            {static_cast<double>(open_->through()[b])});
+  }
   sample_scalars();
   if (probes_) {
     Timer tp(timer(Probes<D, K>::kName));
@@ -861,6 +922,7 @@ std::string Simulation<D, K>::write_checkpoint_now() {
                                          {"contact_possible", contact_possible_ ? 1.0 : 0.0}};
   if (bodies_) bodies_->save(state);
   if (contact_) contact_->save(state, comm_);
+  if (open_) open_->save(state);
   write_checkpoint(comm_, path, s_, state);
   if (comm_.root()) {
     // Keep the two newest checkpoints.
@@ -1016,6 +1078,7 @@ void Simulation<D, K>::start() {
     next_series_ = state.at("next_series");
     contact_possible_ = state.count("contact_possible") && state.at("contact_possible") > 0;
     if (bodies_) bodies_->load(state);
+    if (open_) open_->load(state);
     if (contact_) contact_->load(state);  // every rank reads all pairs ...
     decompose_by_histogram();
     migrate();

@@ -16,6 +16,11 @@ SceneBuilder::SceneBuilder(const v1::Case& c, const std::vector<MaterialParams>&
   for (const auto& w : c.walls()) walls_.push_back(compile_shape(w.shape(), d, shell));
   for (const auto& b : c.bodies()) bodies_.push_back(compile_shape(b.shape(), d, shell));
   for (const auto& f : c.fluids()) fluids_.push_back(compile_shape(f.shape(), d, shell));
+  for (const auto& o : c.open_boundaries()) {
+    v1::Shape box;
+    *box.mutable_box() = o.region();
+    opens_.push_back(compile_shape(box, d, shell));
+  }
   for (const auto& m : materials)
     if (m.fluid) {
       wall_rho_ = m.rho0;
@@ -108,6 +113,8 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
       if (!claimed.empty() && claimed.count(lattice_key(x))) return;
       for (std::size_t k = 0; k < f; ++k)
         if (fluids_[k]->contains(x)) return;
+      for (const auto& o : opens_)
+        if (o->contains(x)) return;
       p.x = x;
       if (region.position_jitter() > 0)
         for (int a = 0; a < d; ++a)
@@ -140,6 +147,29 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
         p.rho = m.rho0 * std::pow(base, 1.0 / m.gamma);
       }
       p.mass = p.rho * vol;
+      fn(p);
+    });
+  }
+
+  // Buffers of open boundaries: fluid at rest at the reference density (the boundary unit
+  // sets their velocity and pressure).
+  for (std::size_t o = 0; o < opens_.size(); ++o) {
+    const int mi = material_index(mats_, c_.open_boundaries(static_cast<int>(o)).material());
+    SceneParticle p;
+    p.kind = Kind::kFluid;
+    p.open = static_cast<std::int32_t>(o);
+    p.material = static_cast<std::uint16_t>(mi);
+    p.rho = mats_[static_cast<std::size_t>(mi)].rho0;
+    p.mass = p.rho * vol;
+    for_each_lattice_point(*opens_[o], spec, clip, [&](const Point3& x) {
+      for (const auto& w : walls_)
+        if (w->contains(x)) return;
+      for (const auto& b : bodies_)
+        if (b->contains(x)) return;
+      if (!claimed.empty() && claimed.count(lattice_key(x))) return;
+      for (std::size_t k = 0; k < o; ++k)
+        if (opens_[k]->contains(x)) return;
+      p.x = x;
       fn(p);
     });
   }

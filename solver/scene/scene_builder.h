@@ -1,9 +1,10 @@
 #pragma once
-// Builds the particles of a case: walls, then rigid bodies, then fluids, each on the lattice
-// of spacing dx inside its shape (or at explicit points), clipped to the domain. A lattice
-// point claimed by a wall is not used by a body or a fluid, one claimed by a body not by a
-// fluid, and one claimed by an earlier region of the same kind not by a later one. The order of
-// generation is fixed, so global ids are the same on every rank and in every run.
+// Builds the particles of a case: walls, then rigid bodies, then fluids, then the buffers of
+// open boundaries, each on the lattice of spacing dx inside its shape (or at explicit points),
+// clipped to the domain. A lattice point claimed by a wall is not used by a body, a fluid or a
+// buffer, one claimed by a body not by a fluid or a buffer, one inside a buffer's region not
+// by a fluid, and one claimed by an earlier region of the same kind not by a later one. The order
+// of generation is fixed, so global ids are the same on every rank and in every run.
 #include <functional>
 #include <memory>
 #include <vector>
@@ -21,6 +22,7 @@ struct SceneParticle {
   std::uint16_t wall = 0;    // index of the wall (walls only)
   std::int32_t body = -1;    // index of the rigid body (rigid particles only)
   std::int32_t region = -1;  // index of the fluid region (fluid particles only)
+  std::int32_t open = -1;    // index of the open boundary (buffer particles only)
   Point3 x = Point3::Zero();
   Point3 v = Point3::Zero();
   double rho = 1, mass = 1;
@@ -37,7 +39,7 @@ class SceneBuilder {
  private:
   const v1::Case& c_;
   const std::vector<MaterialParams>& mats_;
-  std::vector<std::unique_ptr<Shape>> walls_, bodies_, fluids_;
+  std::vector<std::unique_ptr<Shape>> walls_, bodies_, fluids_, opens_;
   double wall_rho_ = 1;
 };
 

@@ -142,16 +142,106 @@ phase_transitions { solid_material: "s" fluid_material: "water" driver: TEMPERAT
   for (const auto& e : errs) EXPECT_EQ(e.field.find("latent"), std::string::npos) << dump(errs);
 }
 
-TEST(CaseValidation, NotImplementedUnitsAreRejectedNotIgnored) {
-  auto errs = errors_of(R"(open_boundaries { name: "in" })");
-  EXPECT_TRUE(has_error(errs, "open_boundaries[0]", "not implemented yet")) << dump(errs);
+TEST(CaseValidation, FrictionNeedsATangentialStiffness) {
+  auto errs = errors_of(R"(reference { kind: "poiseuille" })");
+  EXPECT_TRUE(has_error(errs, "reference", "not implemented yet")) << dump(errs);
   errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
 bodies { name: "b" material: "s" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } }
 contact { stiffness: 1 friction { coefficient: 0.3 } })");
   EXPECT_TRUE(has_error(errs, "contact.friction.tangential_stiffness", "must be > 0"))
       << dump(errs);
-  errs = errors_of(R"(open_boundaries { name: "in" })");
-  EXPECT_TRUE(has_error(errs, "open_boundaries[0]", "not implemented yet")) << dump(errs);
+}
+
+// The base case's fluid sits in [0.5, 1.5]^2 (dx = 0.1, r_c = 0.3); these buffers flank it.
+const char* kInlet = R"(open_boundaries { name: "in" kind: INFLOW material: "water"
+  region { lo { x: 0.2 y: 0.5 } hi { x: 0.5 y: 1.5 } } direction { x: 1 }
+  profile: PARABOLIC mean_velocity: 0.5 ramp_time: 0.1 }
+)";
+const char* kOutlet = R"(open_boundaries { name: "out" kind: OUTFLOW material: "water"
+  region { lo { x: 1.5 y: 0.5 } hi { x: 1.8 y: 1.5 } } direction { x: 1 } pressure: 0 }
+)";
+
+TEST(CaseValidation, OpenBoundariesAreAccepted) {
+  auto errs = errors_of(std::string(kInlet) + kOutlet);
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  // A velocity outlet (Fuchs 2021's gas flow) and a flow along -y.
+  errs = errors_of(R"(open_boundaries { name: "out" kind: OUTFLOW material: "water"
+  region { lo { x: 0.5 y: 0.2 } hi { x: 1.5 y: 0.5 } } direction { y: -1 }
+  profile: UNIFORM mean_velocity: 0.5 start_time: 0.2 })");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+}
+
+TEST(CaseValidation, OpenBoundaryNeedsKindMaterialRegionAndDirection) {
+  const auto errs = errors_of(R"(open_boundaries { name: "in" })");
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].kind", "is required")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].material", "is required")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].region", "is required")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].direction", "must not be zero")) << dump(errs);
+}
+
+TEST(CaseValidation, OpenBoundaryGeometry) {
+  // Oblique direction, thinner than r_c, off the lattice, out of the domain.
+  auto errs = errors_of(R"(open_boundaries { name: "in" kind: INFLOW material: "water"
+  region { lo { x: -0.1 y: 0.5 } hi { x: 0.15 y: 2.5 } } direction { x: 1 y: 1 }
+  mean_velocity: 1 })");
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].direction", "along a coordinate axis"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].region.lo.x", "must lie in the domain"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].region.hi.y", "must lie in the domain"))
+      << dump(errs);
+  errs = errors_of(R"(open_boundaries { name: "in" kind: INFLOW material: "water"
+  region { lo { x: 0.25 y: 0.5 } hi { x: 0.45 y: 1.5 } } direction { x: 1 }
+  mean_velocity: 1 })");
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].region.hi.x", "at least the kernel support"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].region.lo.x", "lattice cell face")) << dump(errs);
+  // Along a periodic axis.
+  errs = errors_of(std::string("periodic_x: true\n") + kInlet);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].direction", "periodic")) << dump(errs);
+  // Two buffers overlapping, and the same name twice.
+  errs = errors_of(std::string(kInlet) + kInlet);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[1].region", "overlaps open_boundaries[0]"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[1].name", "duplicate")) << dump(errs);
+  // Names become series paths.
+  errs = errors_of(R"(open_boundaries { name: "in/1" })");
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].name", "only letters")) << dump(errs);
+}
+
+TEST(CaseValidation, OpenBoundaryMaterialAndFlow) {
+  // The material must exist and be a fluid; an inflow needs a positive mean velocity.
+  auto errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
+open_boundaries { name: "in" kind: INFLOW material: "s"
+  region { lo { x: 0.2 y: 0.5 } hi { x: 0.5 y: 1.5 } } direction { x: 1 } }
+open_boundaries { name: "in2" kind: INFLOW material: "oil" mean_velocity: -1
+  region { lo { x: 0.5 y: 1.5 } hi { x: 1.5 y: 1.8 } } direction { y: -1 } })");
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].material", "is SOLID, expected FLUID"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].mean_velocity", "required for an INFLOW"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[1].material", "unknown material 'oil'"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[1].mean_velocity", "must be > 0")) << dump(errs);
+  // A pressure outlet has no profile or ramp; an inflow has no outlet pressure.
+  errs = errors_of(R"(open_boundaries { name: "out" kind: OUTFLOW material: "water"
+  region { lo { x: 1.5 y: 0.5 } hi { x: 1.8 y: 1.5 } } direction { x: 1 }
+  profile: PARABOLIC ramp_time: 1 }
+open_boundaries { name: "in" kind: INFLOW material: "water" mean_velocity: 1 pressure: 3
+  ramp_time: -1 region { lo { x: 0.2 y: 0.5 } hi { x: 0.5 y: 1.5 } } direction { x: 1 } })");
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].profile", "only used with mean_velocity"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[0].ramp_time", "only used with mean_velocity"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[1].pressure", "only used by a pressure outlet"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "open_boundaries[1].ramp_time", "must be >= 0")) << dump(errs);
+  // The inflow's temperature needs heat conduction.
+  errs = errors_of(std::string(kOutlet) + R"(open_boundaries { name: "in" kind: INFLOW
+  material: "water" mean_velocity: 1 temperature: 300
+  region { lo { x: 0.2 y: 0.5 } hi { x: 0.5 y: 1.5 } } direction { x: 1 } })");
+  EXPECT_TRUE(has_error(errs, "open_boundaries[1].temperature", "heat conduction is not enabled"))
+      << dump(errs);
 }
 
 TEST(CaseValidation, PhaseTransitionsNeedTheirMaterialsAndDrivingField) {
@@ -255,7 +345,7 @@ TEST(CaseValidation, EveryShippedCaseIsValid) {
        {"poiseuille_2d", "couette_2d", "hydrostatic_tank_2d", "hydrostatic_wedge_2d",
         "hydrostatic_cylinder_3d", "free_fall_tank_2d", "dambreak_2d", "dambreak_martin_moyce_2d",
         "colagrossi_dambreak_2d", "rotating_rippled_cylinder_2d", "cylinder_lattice_2d",
-        "taylor_green_2d", "falling_disk_2d"}) {
+        "taylor_green_2d", "falling_disk_2d", "channel_inflow_outflow_2d"}) {
     const auto c = load_case_file(std::string(SPHD_SOURCE_DIR) + "/cases/" + name + ".textproto");
     const auto errs = validate_case(c);
     EXPECT_TRUE(errs.empty()) << name << ": " << dump(errs);

@@ -1,0 +1,114 @@
+// Open-boundary building blocks: the buffer zone's lanes, profile and ramp
+// (solver/boundaries/open_boundary_zone.h) and the particle ledger's ids
+// (solver/boundaries/particle_ledger.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "solver/boundaries/open_boundary_zone.h"
+#include "solver/boundaries/particle_ledger.h"
+#include "tests/support/test_cases.h"
+
+namespace sph {
+namespace {
+
+TEST(OpenBoundaryZone, ParabolicInflowCarriesExactlyTheMeanFlux) {
+  const auto c = test::load_case("channel_inflow_outflow_2d");  // H = 1, dx = 0.05, U = 1
+  const OpenBoundaryZone<2> in(c, 0, 0, 1.0);
+  ASSERT_EQ(in.lane_count(), 20u);
+  EXPECT_TRUE(in.inflow());
+  EXPECT_TRUE(in.prescribed());
+  EXPECT_DOUBLE_EQ(in.length(), 0.2);
+  EXPECT_DOUBLE_EQ(in.inner_xi(), 0.0);   // enters the fluid at x = 0
+  EXPECT_DOUBLE_EQ(in.outer_xi(), -0.2);  // refills at x = -0.2
+  // Discrete flux sum_lanes u dx equals U H (the plain midpoint sum would be 0.125% high).
+  double flux = 0, umax = 0;
+  for (std::size_t l = 0; l < in.lane_count(); ++l) {
+    flux += in.speed(l, 100.0) * c.dx();
+    umax = std::max(umax, in.speed(l, 100.0));
+  }
+  EXPECT_NEAR(flux, 1.0, 1e-12);
+  EXPECT_NEAR(umax, 1.5 * 0.9975 / (1 + 1.0 / 800), 1e-3);  // parabola at the middle lanes
+  // Lanes are the lattice rows; the sample points lie r_c = 0.15 inside the fluid.
+  Vec<2> x(-0.1, 0.025);
+  EXPECT_EQ(in.lane_of(x), 0u);
+  x[1] = 0.975;
+  EXPECT_EQ(in.lane_of(x), 19u);
+  x[1] = 5.0;  // clamped
+  EXPECT_EQ(in.lane_of(x), 19u);
+  EXPECT_NEAR(in.sample_point(3)[0], 0.15, 1e-12);
+  EXPECT_NEAR(in.sample_point(3)[1], 0.175, 1e-12);
+  // Smooth ramp over 2 from t = 0.
+  EXPECT_EQ(in.ramp(0.0), 0.0);
+  EXPECT_NEAR(in.ramp(1.0), 0.5, 1e-15);
+  EXPECT_EQ(in.ramp(2.5), 1.0);
+
+  const OpenBoundaryZone<2> out(c, 1, 0, 1.0);
+  EXPECT_FALSE(out.inflow());
+  EXPECT_FALSE(out.prescribed());  // a pressure outlet
+  EXPECT_DOUBLE_EQ(out.inner_xi(), 2.0);
+  EXPECT_DOUBLE_EQ(out.outer_xi(), 2.2);
+  EXPECT_NEAR(out.sample_point(0)[0], 1.85, 1e-12);
+}
+
+TEST(OpenBoundaryZone, LanesInsideWallsCarryNoFlux) {
+  // An inflow whose region reaches into the bottom wall: the covered lanes get no
+  // particles, and the others carry the whole flux U * (open lanes) * dx.
+  auto c = test::load_case("channel_inflow_outflow_2d");
+  auto* o = c.mutable_open_boundaries(0);
+  o->mutable_region()->mutable_lo()->set_y(-0.15);
+  o->set_profile(v1::UNIFORM);
+  o->set_start_time(1.0);
+  const OpenBoundaryZone<2> in(c, 0, 0, 1.0);
+  ASSERT_EQ(in.lane_count(), 23u);
+  double flux = 0;
+  for (std::size_t l = 0; l < in.lane_count(); ++l) {
+    if (l < 3) {
+      EXPECT_EQ(in.speed(l, 10.0), 0.0) << "lane " << l << " lies in the bottom wall";
+    }
+    flux += in.speed(l, 10.0) * c.dx();
+  }
+  EXPECT_NEAR(flux, 1.0, 1e-12);
+  EXPECT_EQ(in.speed(10, 0.5), 0.0);  // before start_time
+}
+
+TEST(ParticleLedger, CopiesGetIdsInTheOrderOfTheirParentsIds) {
+  const Comm comm(MPI_COMM_SELF);
+  ParticleStore<2> s;
+  auto& extra = s.add<double>("extra", "test", true);
+  s.resize(5, 5);
+  const ParticleId ids[5] = {40, 10, 30, 20, 0};
+  for (std::size_t i = 0; i < 5; ++i) {
+    s.id[i] = ids[i];
+    s.x[i] = Vec<2>(static_cast<double>(i), 0.0);
+    extra[i] = 100.0 + static_cast<double>(i);
+  }
+  ParticleLedger<2> ledger;
+  ledger.set_next_id(50);
+  std::vector<std::int64_t> tallies = {1, 2};
+  // Copy rows 0 (id 40) and 3 (id 20), delete row 1 (id 10).
+  const auto t = ledger.apply(s, {0, 3}, {1}, tallies, comm);
+  EXPECT_EQ(t.created, 2);
+  EXPECT_EQ(t.deleted, 1);
+  EXPECT_EQ(tallies, (std::vector<std::int64_t>{1, 2}));
+  EXPECT_EQ(ledger.next_id(), 52);
+  ASSERT_EQ(s.owned(), 6u);
+  ASSERT_EQ(t.first_new, 4u);
+  // Survivors in order, then the copies with every column of their parent.
+  EXPECT_EQ(s.id[0], 40);
+  EXPECT_EQ(s.id[1], 30);
+  EXPECT_EQ(s.id[3], 0);
+  EXPECT_EQ(s.id[4], 51);  // copy of id 40: the second parent by id
+  EXPECT_EQ(s.id[5], 50);  // copy of id 20: the first
+  EXPECT_EQ(s.x[4][0], 0.0);
+  EXPECT_EQ(extra[5], 103.0);
+  // The counter survives a checkpoint.
+  std::map<std::string, double> state;
+  ledger.save(state, "next");
+  ParticleLedger<2> again;
+  again.load(state, "next");
+  EXPECT_EQ(again.next_id(), 52);
+}
+
+}  // namespace
+}  // namespace sph
