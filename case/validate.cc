@@ -5,6 +5,7 @@
 #include <set>
 
 #include "case/estimate.h"
+#include "case/validate_reference.h"
 
 namespace sph {
 namespace {
@@ -470,7 +471,7 @@ class Validator {
     }
     for (int i = 0; i < c_.open_boundaries_size(); ++i)
       error(idx("open_boundaries", i), "not implemented yet: inflow/outflow boundaries");
-    if (c_.has_reference()) error("reference", "not implemented yet: convergence-study references");
+    for (auto& e : validate_reference(c_)) errors_.push_back(std::move(e));
   }
 
   void numerics() {
