@@ -169,6 +169,32 @@ TEST(ServiceStudy, StudiesAreValidatedAtTheDoor) {
   EXPECT_EQ(plain.exit_code, 8) << plain.out << plain.err;
 }
 
+TEST(ServiceStudy, ACancelledStudyStopsAndKeepsTheReportOfItsFinishedLevels) {
+  ServiceHarness h;
+  h.start_server();
+  auto pool = h.start_pool(2, {"--max-jobs", "1"});
+  const std::string path = write_case(
+      h, "slab.textproto", with_end_time(read_test_case("tiny_conduction_2d.textproto"), 0.03));
+  ASSERT_EQ(h.sphctl({"study", path, "--dx", "0.04,0.02,0.01"}).exit_code, 0);
+  ASSERT_TRUE(h.wait_for_job("job-1", 120s, [](const v1::Job& j) {
+    return j.has_progress() && j.progress().study().level() == 3 && j.progress().step() > 0;
+  })) << h.logs();
+  ASSERT_EQ(h.sphctl({"cancel", "job-1"}).exit_code, 0);
+  ASSERT_TRUE(h.wait_for_state("job-1", v1::JOB_STATE_CANCELLED, 30s)) << h.logs();
+  const v1::Job done = h.get_job("job-1");
+  const auto names = manifest_names(done);
+  EXPECT_TRUE(names.count("study.csv") && names.count("study.md") &&
+              names.count("level_3/result.h5"))
+      << "the partial study is not in the manifest";
+  const auto rows = study_rows(done.result().output_dir() + "/study.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].at("status"), "completed");
+  EXPECT_EQ(rows[1].at("status"), "completed");
+  EXPECT_EQ(rows[2].at("status"), "cancelled");
+  EXPECT_EQ(h.sphctl({"watch", "job-1"}).exit_code, 11);
+  EXPECT_EQ(pool.wait(30s).value_or(-1), 0) << h.logs();
+}
+
 TEST(ServiceStudy, ALostPoolsStudyReusesItsFinishedLevelsOnTheNextPool) {
   ServiceHarness h;
   h.start_server(ServerSettings().lease(2));

@@ -39,13 +39,13 @@ targets, which the coarsest level (ten particles across) already meets.
 """,
     "taylor_green": """
 The velocity field converges at first order: 21% of the amplitude at 20 particles per
-wavelength, 5.6% at 80. The study measures the field because the decay rate (the quantity
-column) is a signed quantity: it is 10.7% too fast at dx = 0.05, 0.04% off at dx = 0.018 and
+wavelength, 5.6% at 80. The study measures the field because the decay rate (column
+`quantity` of the CSV) is a signed quantity: it is 10.7% too fast at dx = 0.05, 0.04% off at dx = 0.018 and
 0.8% too slow at dx = 0.0125, so its error passes through zero between levels and no power
 law describes it (FreeSurface.TaylorGreenDecayRate still checks it at dx = 0.04). With the
-amplitude right within about 1%, what remains of the field error at the finest level is its
-shape: particle-scale velocity fluctuations of the weakly compressible, transport-velocity
-scheme. 10% needs about 42 particles per wavelength; 5% about 90 (extrapolated); 1% would
+amplitude right within about 1%, most of the field error at the finest level is in its shape
+(particle-scale velocity fluctuations of the weakly compressible, transport-velocity scheme
+are the likely source). 10% needs about 42 particles per wavelength; 5% about 90 (extrapolated); 1% would
 need some 480 (dx = 0.002, 230k particles, nearly two core-hours per unit of simulated time),
 which says the scheme at Ma = 0.1 is not the tool for a 1% velocity field.
 """,
@@ -201,6 +201,8 @@ def main():
             t.get(0.1, "-")))
         with open(os.path.join(d, "study.md")) as f:
             md = f.read()
+        # The raw table next to the plot, for anyone who wants the numbers.
+        shutil.copyfile(os.path.join(d, "study.csv"), os.path.join(figures, name + ".csv"))
         png = os.path.join(d, "study.png")
         if os.path.exists(png):
             shutil.copyfile(png, os.path.join(figures, name + ".png"))
@@ -210,8 +212,9 @@ def main():
         md = md.replace(" (reused)", "")
         text = "<a id=\"%s\"></a>\n## %s\n\n" % (name, title)
         text += "One command (from the repository root, after building): `%s` " % command
-        text += "(or through the service: `sphctl study %s %s`).\n\n" % (
-            case, flags.replace("--study-", "--").replace("--refine", "--refine"))
+        text += "(or through the service: `sphctl study %s %s`). Numbers: " % (
+            case, flags.replace("--study-", "--"))
+        text += "[accuracy/%s.csv](accuracy/%s.csv).\n\n" % (name, name)
         if name in COMMENTS:
             text += COMMENTS[name].strip() + "\n\n"
         sections.append(text + md)
@@ -333,8 +336,10 @@ holds `study.csv`, `study.md`, `study.png` and `level_<k>/result.h5`, `result.xm
 `ConvergenceStudy.ConductionSlabIsSecondOrderOnACoarseLadder` (validation: a three-level study
 that must show order 2 +- 0.5, then reuse every level when run again), `ServiceStudy.*`
 (service: `sphctl study --watch` on a two-rank pool with fetch and one row per level,
-validation at the door, a killed pool's study resuming on another pool with its finished
-levels reused and the interrupted level resumed from its checkpoint).
+validation at the door, a cancelled study keeping the report of its finished levels, a killed
+pool's study resuming on another pool with its finished levels reused and the interrupted level
+resumed from its checkpoint), `StoreTest.MigratesAVersion1DatabaseAndKeepsStudiesWithTheirJobs`
+(the schema migration).
 """
 
 if __name__ == "__main__":

@@ -2,7 +2,7 @@
 # Runs the shipped convergence studies (docs/accuracy.md) with sph-worker in local mode on one
 # rank, then writes docs/accuracy.md and the plots in docs/accuracy/ from their results.
 #
-#   tests/validation/studies/run.sh                 # every study, full ladders (about an hour
+#   tests/validation/studies/run.sh                 # every study, full ladders (half an hour
 #                                                   # on two shared cores)
 #   tests/validation/studies/run.sh --coarse        # the three coarsest levels of each (minutes)
 #   tests/validation/studies/run.sh --only poiseuille,couette
