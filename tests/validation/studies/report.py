@@ -179,9 +179,11 @@ def main():
     ap.add_argument("--docs", required=True)
     args = ap.parse_args()
     studies = [line.strip().split("|") for line in sys.stdin if line.strip()]
+    # Before anything is written: a rewritten report would make the tree look dirty.
+    root = os.path.dirname(os.path.abspath(args.docs))
+    version = git_describe(root)
     figures = os.path.join(args.docs, "accuracy")
     os.makedirs(figures, exist_ok=True)
-    root = os.path.dirname(os.path.abspath(args.docs))
 
     summary, sections = [], []
     for name, case, flags in studies:
@@ -220,7 +222,7 @@ def main():
         sections.append(text + md)
 
     with open(os.path.join(args.docs, "accuracy.md"), "w") as out:
-        out.write(HEADER.format(machine=machine(), version=git_describe(root)))
+        out.write(HEADER.format(machine=machine(), version=version))
         out.write("| study | levels | observed order | 1% error | 5% error | 10% error |\n")
         out.write("|---|---:|---:|---|---|---|\n")
         out.write("\n".join(summary) + "\n\n")
