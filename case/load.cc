@@ -8,6 +8,8 @@
 #include <functional>
 #include <sstream>
 
+#include "case/reference_data.h"
+
 namespace sph {
 namespace {
 
@@ -122,7 +124,9 @@ void inline_point_files(v1::Case& c, const std::string& base_dir) {
 
 v1::Case load_case_file(const std::string& path) {
   v1::Case c = parse_case_text(read_text_file(path));
-  inline_point_files(c, std::filesystem::path(path).parent_path().string());
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  inline_point_files(c, dir);
+  inline_reference_data(c, dir);
   return c;
 }
 

@@ -21,7 +21,8 @@ v1::Case parse_case_text(const std::string& text);
 // Replaces every PointSet.file (relative to base_dir) by its points.
 void inline_point_files(v1::Case& c, const std::string& base_dir);
 
-// parse_case_text + inline_point_files relative to the file's directory.
+// parse_case_text + inline_point_files and inline_reference_data (case/reference_data.h)
+// relative to the file's directory.
 v1::Case load_case_file(const std::string& path);
 
 // The canonical text form of a case (what is stored and written into result metadata).

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "case/estimate.h"
+#include "case/validate_reference.h"
 
 namespace sph {
 namespace {
@@ -639,7 +640,7 @@ class Validator {
         error("thermal.volumetric_heat_source", "must be finite");
     }
     open_boundaries();
-    if (c_.has_reference()) error("reference", "not implemented yet: convergence-study references");
+    for (auto& e : validate_reference(c_)) errors_.push_back(std::move(e));
   }
 
   void numerics() {

@@ -16,6 +16,10 @@ commands:
   submit CASE [--watch] [--dry-run] [--request-id ID]
                          validate a case locally and submit it (--dry-run: print particle
                          counts, time steps and memory, submit nothing)
+  study CASE (--refine N [--ratio R] | --dx A,B,C) [--watch] [--dry-run] [--request-id ID]
+                         a convergence study: the case at a ladder of resolutions, each
+                         measured against the case's reference; the result holds study.csv,
+                         study.md, study.png and every level's result (docs/accuracy.md)
   status JOB [--case]    state, progress, checkpoint, result files and attempts of a job
   list [--state S]... [--limit N]
                          jobs, newest first (states: QUEUED RUNNING SUCCEEDED FAILED CANCELLED)
@@ -62,6 +66,7 @@ int run(int argc, char** argv) {
   const std::string command = args[0];
   ArgScanner rest(std::vector<std::string>(args.begin() + 1, args.end()));
   if (command == "submit") return cmd_submit(*g, std::move(rest));
+  if (command == "study") return cmd_study(*g, std::move(rest));
   if (command == "status") return cmd_status(*g, std::move(rest));
   if (command == "list") return cmd_list(*g, std::move(rest));
   if (command == "watch") return cmd_watch(*g, std::move(rest));

@@ -10,8 +10,10 @@
 #include <string>
 
 #include "case/load.h"
+#include "case/study_spec_text.h"
 #include "case/validate.h"
 #include "solver/run/run_case.h"
+#include "worker/local_study.h"
 
 namespace sph::worker {
 namespace {
@@ -24,6 +26,8 @@ extern "C" void on_signal(int) {
 void usage() {
   std::fprintf(stderr,
                "usage: sph-worker --case FILE --out DIR [--resume CHECKPOINT] [--quiet]\n"
+               "       sph-worker --case FILE --out DIR (--study-refine N [--study-ratio R] |\n"
+               "                  --study-dx A,B,C) [--quiet]   (a convergence study)\n"
                "       sph-worker --server ADDR [pool options]   (see --help)\n");
 }
 
@@ -52,6 +56,9 @@ bool load_on_root(const std::string& path, int rank, std::string& text, std::str
 int run_local(int argc, char** argv) {
   std::string case_path, out_dir, resume;
   bool quiet = false;
+  bool study = false;
+  v1::StudySpec spec;
+  std::string study_error;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&](std::string& v) {
@@ -68,7 +75,12 @@ int run_local(int argc, char** argv) {
       ok = next(resume);
     else if (a == "--quiet")
       quiet = true;
-    else
+    else if (a == "--study-refine" || a == "--study-ratio" || a == "--study-dx") {
+      std::string value;
+      ok = next(value);
+      study = true;
+      if (ok && study_error.empty()) set_study_field(spec, a.substr(8), value, study_error);
+    } else
       ok = false;
     if (!ok) {
       usage();
@@ -77,8 +89,15 @@ int run_local(int argc, char** argv) {
   }
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  if (case_path.empty() || out_dir.empty()) {
-    if (rank == 0) usage();
+  if (case_path.empty() || out_dir.empty() || !study_error.empty() || (study && !resume.empty())) {
+    if (rank == 0) {
+      if (!study_error.empty()) std::fprintf(stderr, "sph-worker: %s\n", study_error.c_str());
+      if (study && !resume.empty())
+        std::fprintf(stderr,
+                     "sph-worker: a study resumes by itself when run again into the same --out "
+                     "directory; --resume is for single runs\n");
+      usage();
+    }
     return kExitError;
   }
   std::string text, error;
@@ -97,6 +116,7 @@ int run_local(int argc, char** argv) {
   }
   std::signal(SIGTERM, on_signal);
   std::signal(SIGINT, on_signal);
+  if (study) return run_local_study(c, spec, out_dir, quiet, &g_interrupt);
 
   RunOptions opt;
   opt.output_dir = std::filesystem::absolute(out_dir).string();

@@ -5,6 +5,8 @@
 
 #include "cli/connection.h"
 #include "cli/options.h"
+#include "sph/v1/case.pb.h"
+#include "sph/v1/study.pb.h"
 
 namespace sph::ctl {
 
@@ -15,6 +17,16 @@ int cmd_watch(const GlobalOptions& g, ArgScanner args);
 int cmd_cancel(const GlobalOptions& g, ArgScanner args);
 int cmd_fetch(const GlobalOptions& g, ArgScanner args);
 int cmd_health(const GlobalOptions& g, ArgScanner args);
+int cmd_study(const GlobalOptions& g, ArgScanner args);
+
+// Loads a case file (inlining point and reference data files) and validates it, printing the
+// problems. Returns kOk or kInvalidCase.
+int load_and_validate(const std::string& path, v1::Case& c);
+
+// Submits the case (a convergence study when `study` is given) and, with `watch`, follows
+// it. Returns the exit code.
+int submit_job(const GlobalOptions& g, const v1::Case& c, const std::string& path,
+               const v1::StudySpec* study, bool watch, const std::string& request_id);
 
 // Follows a job's events until it ends, reconnecting (and resuming from the last event seen)
 // while the server is away. Returns the exit code for the job's final state.

@@ -64,18 +64,48 @@ int print_dry_run(const GlobalOptions& g, const v1::Case& c, const std::string& 
 
 }  // namespace
 
-int cmd_submit(const GlobalOptions& g, ArgScanner args) {
-  const bool watch = args.take_flag("--watch");
-  const bool dry_run = args.take_flag("--dry-run");
-  std::string request_id;
-  args.take_value("--request-id", request_id);
-  std::vector<std::string> pos;
-  if (!expect_positionals(args, 1, kUsageText, pos)) return kUsage;
-  const std::string& path = pos[0];
+int submit_job(const GlobalOptions& g, const v1::Case& c, const std::string& path,
+               const v1::StudySpec* study, bool watch, const std::string& request_id) {
+  auto conn = Connection::open(g);
+  if (!conn) return kUsage;
+  v1::SubmitRequest req;
+  req.set_request_id(request_id.empty() ? random_request_id() : request_id);
+  req.set_case_text(case_to_text(c));
+  if (study != nullptr) *req.mutable_study() = *study;
+  v1::SubmitResponse resp;
+  grpc::Status status;
+  const auto give_up = std::chrono::steady_clock::now() + kRetryFor;
+  auto pause = std::chrono::milliseconds(200);
+  while (true) {
+    status = conn->jobs().Submit(conn->unary_context().get(), req, &resp);
+    if (status.ok() || !is_transient(status) || std::chrono::steady_clock::now() >= give_up) break;
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::milliseconds(3000));
+  }
+  if (!status.ok())
+    return report_error(status, (study ? "study " : "submit ") + path, conn->address());
 
-  // Load (inlining point files, which the server cannot read) and validate here first, so
-  // mistakes are reported without a round trip and the server gets a self-contained case.
-  v1::Case c;
+  if (g.json && !watch) {
+    std::printf("%s\n", to_json(resp).c_str());
+  } else if (!g.json) {
+    if (resp.created())
+      std::printf("submitted %s (%s%s, about %s particles%s)\n", resp.job().id().c_str(),
+                  resp.job().name().c_str(), study ? ", convergence study" : "",
+                  format_count(resp.job().estimated_particles()).c_str(),
+                  study ? " at the finest level" : "");
+    else
+      std::printf("%s was already submitted with request id %s (%s)\n", resp.job().id().c_str(),
+                  req.request_id().c_str(), service::state_name(resp.job().state()));
+    std::fflush(stdout);
+  }
+  if (!watch) return kOk;
+  return watch_job(*conn, g, resp.job().id(), 0);
+}
+
+int load_and_validate(const std::string& path, v1::Case& c) {
+  // Load (inlining point and reference data files, which the server cannot read) and
+  // validate here first, so mistakes are reported without a round trip and the server gets a
+  // self-contained case.
   try {
     c = load_case_file(path);
   } catch (const CaseLoadError& e) {
@@ -87,39 +117,21 @@ int cmd_submit(const GlobalOptions& g, ArgScanner args) {
     for (const auto& e : errors) std::fprintf(stderr, "  %s\n", e.to_string().c_str());
     return kInvalidCase;
   }
+  return kOk;
+}
+
+int cmd_submit(const GlobalOptions& g, ArgScanner args) {
+  const bool watch = args.take_flag("--watch");
+  const bool dry_run = args.take_flag("--dry-run");
+  std::string request_id;
+  args.take_value("--request-id", request_id);
+  std::vector<std::string> pos;
+  if (!expect_positionals(args, 1, kUsageText, pos)) return kUsage;
+  const std::string& path = pos[0];
+  v1::Case c;
+  if (const int rc = load_and_validate(path, c); rc != kOk) return rc;
   if (dry_run) return print_dry_run(g, c, path);
-
-  auto conn = Connection::open(g);
-  if (!conn) return kUsage;
-  v1::SubmitRequest req;
-  req.set_request_id(request_id.empty() ? random_request_id() : request_id);
-  req.set_case_text(case_to_text(c));
-  v1::SubmitResponse resp;
-  grpc::Status status;
-  const auto give_up = std::chrono::steady_clock::now() + kRetryFor;
-  auto pause = std::chrono::milliseconds(200);
-  while (true) {
-    status = conn->jobs().Submit(conn->unary_context().get(), req, &resp);
-    if (status.ok() || !is_transient(status) || std::chrono::steady_clock::now() >= give_up) break;
-    std::this_thread::sleep_for(pause);
-    pause = std::min(pause * 2, std::chrono::milliseconds(3000));
-  }
-  if (!status.ok()) return report_error(status, "submit " + path, conn->address());
-
-  if (g.json && !watch) {
-    std::printf("%s\n", to_json(resp).c_str());
-  } else if (!g.json) {
-    if (resp.created())
-      std::printf("submitted %s (%s, about %s particles)\n", resp.job().id().c_str(),
-                  resp.job().name().c_str(),
-                  format_count(resp.job().estimated_particles()).c_str());
-    else
-      std::printf("%s was already submitted with request id %s (%s)\n", resp.job().id().c_str(),
-                  req.request_id().c_str(), service::state_name(resp.job().state()));
-    std::fflush(stdout);
-  }
-  if (!watch) return kOk;
-  return watch_job(*conn, g, resp.job().id(), 0);
+  return submit_job(g, c, path, nullptr, watch, request_id);
 }
 
 }  // namespace sph::ctl

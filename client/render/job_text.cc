@@ -70,8 +70,31 @@ std::string format_time_ms(std::int64_t unix_ms) {
   return buf;
 }
 
+std::string study_summary(const v1::StudySpec& spec) {
+  if (spec.dx_size() > 0) {
+    std::string s = std::to_string(spec.dx_size()) + " levels, dx =";
+    for (double dx : spec.dx()) s.append(" ").append(g(dx));
+    return s;
+  }
+  return std::to_string(spec.refine()) + " levels, refined by " +
+         g(spec.has_ratio() ? spec.ratio() : std::sqrt(2.0)) + " from the case's dx";
+}
+
 std::string progress_summary(const v1::ProgressInfo& p) {
-  std::string s = "step " + std::to_string(p.step()) + "  t = " + g(p.time());
+  std::string s;
+  if (p.has_study() && p.study().levels() > 0)
+    s.append("level ")
+        .append(std::to_string(p.study().level()))
+        .append("/")
+        .append(std::to_string(p.study().levels()))
+        .append(" (dx = ")
+        .append(g(p.study().dx()))
+        .append(", ladder ")
+        .append(fixed(100 * p.study().fraction(), 1, "%"))
+        .append(p.study().eta_seconds() >= 0 ? ", ETA " + format_duration(p.study().eta_seconds())
+                                             : std::string())
+        .append(")  ");
+  s += "step " + std::to_string(p.step()) + "  t = " + g(p.time());
   if (p.end_time() > 0)
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string&&.
     s.append("/")
@@ -90,7 +113,8 @@ std::string progress_summary(const v1::ProgressInfo& p) {
 }
 
 std::string describe_job(const v1::Job& j) {
-  std::string s = j.id() + "  " + j.name() + "  " + state_name(j.state());
+  std::string s = j.id() + "  " + j.name() + (j.has_study() ? " (convergence study)" : "") + "  " +
+                  state_name(j.state());
   if (j.attempt() > 0) s += "  attempt " + std::to_string(j.attempt());
   if (j.cancel_requested() && !service::is_terminal(j.state())) s += "  (cancel requested)";
   s += "\n";
@@ -98,7 +122,9 @@ std::string describe_job(const v1::Job& j) {
   s += "  created:    " + format_time_ms(j.created_unix_ms());
   if (j.started_unix_ms() > 0) s += "   started: " + format_time_ms(j.started_unix_ms());
   if (j.finished_unix_ms() > 0) s += "   finished: " + format_time_ms(j.finished_unix_ms());
-  s += "\n  particles:  about " + format_count(j.estimated_particles()) + "\n";
+  if (j.has_study()) s += "\n  study:      " + study_summary(j.study());
+  s += "\n  particles:  about " + format_count(j.estimated_particles()) +
+       (j.has_study() ? " at the finest level\n" : "\n");
   if (j.has_progress()) s += "  progress:   " + progress_summary(j.progress()) + "\n";
   if (j.has_checkpoint())
     s += "  checkpoint: step " + std::to_string(j.checkpoint().step()) +
@@ -145,12 +171,15 @@ std::string job_table_row(const v1::Job& j) {
   std::string progress = "-";
   if (j.state() == v1::JOB_STATE_SUCCEEDED)
     progress = "100%";
+  else if (j.has_progress() && j.progress().has_study())
+    progress = fixed(100 * j.progress().study().fraction(), 1, "%");
   else if (j.has_progress() && j.progress().end_time() > 0)
     progress = fixed(100 * j.progress().time() / j.progress().end_time(), 1, "%");
   char buf[512];
   std::snprintf(buf, sizeof buf, "%-12s %-10s %7d %8s  %-19s  %s", j.id().c_str(),
                 state_name(j.state()), j.attempt(), progress.c_str(),
-                format_time_ms(j.created_unix_ms()).c_str(), j.name().c_str());
+                format_time_ms(j.created_unix_ms()).c_str(),
+                (j.has_study() ? j.name() + " (study)" : j.name()).c_str());
   return buf;
 }
 

@@ -40,14 +40,22 @@ void ProgressBar::draw(bool force) {
   // At most ten redraws a second: a fast stream of events must not flood the terminal.
   if (!force && drawn_ && now - last_draw_ < std::chrono::milliseconds(100)) return;
   last_draw_ = now;
-  const double fraction =
-      last_.end_time() > 0 ? std::clamp(last_.time() / last_.end_time(), 0.0, 1.0) : 0.0;
-  char tail[256];
-  std::snprintf(tail, sizeof tail, " %5.1f%%  t=%.4g/%.4g s  step %lld  %s p-steps/s  ETA %s",
-                100 * fraction, last_.time(), last_.end_time(),
+  // A study's bar covers the whole ladder; the text names the level now running.
+  const bool study = last_.has_study() && last_.study().levels() > 0;
+  const double fraction = study ? std::clamp(last_.study().fraction(), 0.0, 1.0)
+                          : last_.end_time() > 0
+                              ? std::clamp(last_.time() / last_.end_time(), 0.0, 1.0)
+                              : 0.0;
+  char level[64] = "";
+  if (study)
+    std::snprintf(level, sizeof level, "  level %d/%d dx=%.3g", last_.study().level(),
+                  last_.study().levels(), last_.study().dx());
+  char tail[320];
+  std::snprintf(tail, sizeof tail, " %5.1f%%%s  t=%.4g/%.4g s  step %lld  %s p-steps/s  ETA %s",
+                100 * fraction, level, last_.time(), last_.end_time(),
                 static_cast<long long>(last_.step()),
                 format_count(last_.particle_steps_per_second()).c_str(),
-                format_duration(last_.eta_seconds()).c_str());
+                format_duration(study ? last_.study().eta_seconds() : last_.eta_seconds()).c_str());
   const std::string head = job_id_ + " ";
   const int width = terminal_width(fileno(out_));
   const int bar =

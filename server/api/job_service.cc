@@ -7,6 +7,7 @@
 
 #include "case/estimate.h"
 #include "case/load.h"
+#include "case/study_ladder.h"
 #include "case/validate.h"
 #include "server/api/errors.h"
 #include "server/clock.h"
@@ -79,10 +80,27 @@ grpc::Status JobServiceImpl::Submit(grpc::ServerContext* context, const v1::Subm
     job.request_id = request->request_id();
     job.name = c.name();
     job.case_text = case_to_text(c);
+    job.estimated_particles = estimate_case(c).total();
     service::Sha256 h;
     h.update(job.case_text);
+    if (request->has_study()) {
+      // The ladder is checked as the case is: each level must pass (the particle limit
+      // applies to the finest), and the case needs a reference.
+      const auto study_errors =
+          validate_study(c, request->study(), ValidationLimits{limits_.max_particles});
+      if (!study_errors.empty()) {
+        for (const auto& e : study_errors)
+          context->AddTrailingMetadata("sph-invalid-field", e.field.empty() ? "." : e.field);
+        return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
+                            "invalid study: " + join_errors(study_errors));
+      }
+      job.study = request->study().SerializeAsString();
+      // The same case as a study is a different job (a reused request id must conflict).
+      h.update("\nstudy:" + job.study);
+      const auto ladder = study_ladder(c, request->study());
+      job.estimated_particles = estimate_case(level_case(c, ladder.back())).total();
+    }
     job.case_sha256 = h.hex_digest();
-    job.estimated_particles = estimate_case(c).total();
     auto result = store_.submit(job, now_unix_ms());
     if (result.created)
       service::log_line("%s submitted (%s, about %.0f particles, request %s)",

@@ -16,7 +16,7 @@ using service::state_name;
 
 constexpr const char* kJobColumns =
     "id, request_id, name, state, reason, attempt, cancel_requested, created_ms, started_ms, "
-    "finished_ms, estimated_particles, progress, checkpoint, result, last_event";
+    "finished_ms, estimated_particles, progress, checkpoint, result, last_event, study";
 
 v1::JobState state_from_text(const std::string& s) {
   const auto parsed = service::parse_state(s);
@@ -36,7 +36,7 @@ void parse_blob(const Statement& st, int column, Message* out) {
   if (!st.is_null(column)) out->ParseFromString(st.blob(column));
 }
 
-// Reads the columns of kJobColumns (and case_text at column 15 when asked).
+// Reads the columns of kJobColumns (and case_text at column 16 when asked).
 v1::Job job_from_row(const Statement& st, bool with_case) {
   v1::Job j;
   j.set_id(format_job_id(st.int64(0)));
@@ -54,7 +54,8 @@ v1::Job job_from_row(const Statement& st, bool with_case) {
   if (!st.is_null(12)) parse_blob(st, 12, j.mutable_checkpoint());
   if (!st.is_null(13)) parse_blob(st, 13, j.mutable_result());
   j.set_last_event_sequence(st.int64(14));
-  if (with_case) j.set_case_text(st.text(15));
+  if (!st.is_null(15)) parse_blob(st, 15, j.mutable_study());
+  if (with_case) j.set_case_text(st.text(16));
   return j;
 }
 
@@ -273,16 +274,21 @@ SubmitResult JobStore::submit(const NewJob& job, std::int64_t now_ms) {
       return {read_job(id, false, false), false};
     }
   }
-  db_.prepare(
-         "INSERT INTO jobs (request_id, case_sha256, name, case_text, estimated_particles, "
-         "state, reason, created_ms) VALUES (?1, ?2, ?3, ?4, ?5, 'QUEUED', 'submitted', ?6)")
-      .bind(1, job.request_id)
+  auto insert = db_.prepare(
+      "INSERT INTO jobs (request_id, case_sha256, name, case_text, estimated_particles, "
+      "state, reason, created_ms, study) VALUES (?1, ?2, ?3, ?4, ?5, 'QUEUED', 'submitted', "
+      "?6, ?7)");
+  insert.bind(1, job.request_id)
       .bind(2, job.case_sha256)
       .bind(3, job.name)
       .bind(4, job.case_text)
       .bind(5, job.estimated_particles)
-      .bind(6, now_ms)
-      .run();
+      .bind(6, now_ms);
+  if (job.study.empty())
+    insert.bind_null(7);
+  else
+    insert.bind_blob(7, job.study);
+  insert.run();
   const std::int64_t id = sqlite3_last_insert_rowid(db_.handle());
   v1::JobEvent e;
   e.mutable_state_change()->set_state(v1::JOB_STATE_QUEUED);
@@ -361,7 +367,7 @@ std::optional<v1::ClaimResponse> JobStore::claim(const ClaimInfo& who, std::int6
   bool has_cp = false;
   {
     auto st = db_.prepare(
-        "SELECT id, attempt, checkpoint, case_text FROM jobs WHERE state = 'QUEUED' "
+        "SELECT id, attempt, checkpoint, case_text, study FROM jobs WHERE state = 'QUEUED' "
         "ORDER BY id LIMIT 1");
     if (!st.step()) return std::nullopt;
     id = st.int64(0);
@@ -369,6 +375,13 @@ std::optional<v1::ClaimResponse> JobStore::claim(const ClaimInfo& who, std::int6
     has_cp = !st.is_null(2);
     if (has_cp) parse_blob(st, 2, &cp);
     out.set_case_text(st.text(3));
+    if (!st.is_null(4)) parse_blob(st, 4, out.mutable_study());
+  }
+  if (out.has_study()) {
+    // A study's later attempt reuses the levels its earlier attempts finished.
+    auto st = db_.prepare("SELECT output_dir FROM attempts WHERE job_id = ?1 ORDER BY number DESC");
+    st.bind(1, id);
+    while (st.step()) out.add_previous_output_dirs(st.text(0));
   }
   const std::string job_id = format_job_id(id);
   const std::int64_t lease = now_ms + options_.lease_ms;

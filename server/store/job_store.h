@@ -30,6 +30,7 @@ struct NewJob {
   std::string case_text;  // canonical text
   std::string case_sha256;
   double estimated_particles = 0;
+  std::string study;  // serialized sph.v1.StudySpec; empty for a single run
 };
 
 struct SubmitResult {

@@ -7,7 +7,7 @@ namespace sph::server::store {
 namespace {
 
 // Never edit a migration that has shipped; append a new one.
-constexpr std::array<const char*, 1> kMigrations = {
+constexpr std::array<const char*, 2> kMigrations = {
     // 1: jobs, attempts and the append-only event log.
     R"sql(
 CREATE TABLE jobs (
@@ -62,6 +62,10 @@ CREATE TRIGGER events_no_update BEFORE UPDATE ON events
 BEGIN SELECT RAISE(ABORT, 'events are append-only'); END;
 CREATE TRIGGER events_no_delete BEFORE DELETE ON events
 BEGIN SELECT RAISE(ABORT, 'events are append-only'); END;
+)sql",
+    // 2: convergence-study jobs carry their ladder (sph.v1.StudySpec); NULL for single runs.
+    R"sql(
+ALTER TABLE jobs ADD COLUMN study BLOB;
 )sql",
 };
 

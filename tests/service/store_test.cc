@@ -39,7 +39,7 @@ class StoreTest : public ::testing::Test {
   std::string db() const { return dir_ + "/jobs.db"; }
 
   NewJob job(const std::string& request_id, const std::string& text = "name: \"a\"") {
-    return NewJob{request_id, "a", text, "sha-of-" + text, 100};
+    return NewJob{request_id, "a", text, "sha-of-" + text, 100, ""};
   }
   std::int64_t submit(const std::string& request_id) {
     const auto r = store_->submit(job(request_id), kT0);
@@ -256,6 +256,53 @@ TEST_F(StoreTest, RefusesADatabaseFromANewerRelease) {
     raw.exec("PRAGMA user_version = " + std::to_string(current_schema_version() + 1));
   }
   EXPECT_THROW(open(), SqliteError);
+}
+
+TEST_F(StoreTest, MigratesAVersion1DatabaseAndKeepsStudiesWithTheirJobs) {
+  // A database of the first release: no jobs.study column, user_version 1.
+  const auto old_job = submit("before");
+  store_.reset();
+  {
+    Database raw(db());
+    raw.exec("ALTER TABLE jobs DROP COLUMN study");
+    raw.exec("PRAGMA user_version = 1");
+  }
+  open();  // migrates to the current version
+  EXPECT_EQ(current_schema_version(), 2);
+  {
+    Database raw(db());
+    auto st = raw.prepare("PRAGMA user_version");
+    st.step();
+    EXPECT_EQ(st.int64(0), 2);
+  }
+  const v1::Job before = store_->get(old_job, true);
+  EXPECT_EQ(before.state(), v1::JOB_STATE_QUEUED);
+  EXPECT_FALSE(before.has_study());
+
+  // A study job keeps its ladder, and every attempt after the first learns where the earlier
+  // ones wrote (their finished levels are reused).
+  v1::StudySpec spec;
+  spec.set_refine(4);
+  spec.set_ratio(2);
+  NewJob study = job("study", "name: \"s\"");
+  study.study = spec.SerializeAsString();
+  const auto submitted = store_->submit(study, kT0);
+  ASSERT_TRUE(submitted.job.has_study());
+  EXPECT_EQ(submitted.job.study().refine(), 4);
+  EXPECT_EQ(submitted.job.study().ratio(), 2);
+  claim(kT0);  // the older plain job
+  const auto first = claim(kT0);
+  EXPECT_EQ(first.job_id(), submitted.job.id());
+  ASSERT_TRUE(first.has_study());
+  EXPECT_EQ(first.previous_output_dirs_size(), 0);
+  EXPECT_EQ(store_->expire_leases(kT0 + 2 * kLeaseMs), 2);
+  claim(kT0 + 3 * kLeaseMs);
+  const auto second = claim(kT0 + 3 * kLeaseMs);
+  EXPECT_EQ(second.job_id(), submitted.job.id());
+  EXPECT_EQ(second.attempt(), 2);
+  ASSERT_EQ(second.previous_output_dirs_size(), 1);
+  EXPECT_EQ(second.previous_output_dirs(0), first.output_dir());
+  EXPECT_EQ(store_->list({}, 10, 0).jobs.front().study().refine(), 4);
 }
 
 TEST_F(StoreTest, ListsNewestFirstInPagesAndByState) {

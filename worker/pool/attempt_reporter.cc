@@ -39,8 +39,12 @@ AttemptReporter::~AttemptReporter() {
 }
 
 void AttemptReporter::on_progress(const Progress& p) {
+  on_progress(to_proto(p));
+}
+
+void AttemptReporter::on_progress(const v1::ProgressInfo& p) {
   std::lock_guard lock(mu_);
-  progress_ = to_proto(p);
+  progress_ = p;
   progress_sent_ = false;
 }
 

@@ -33,6 +33,7 @@ class AttemptReporter {
 
   // Solver callbacks (rank 0's solver thread).
   void on_progress(const Progress& p);
+  void on_progress(const v1::ProgressInfo& p);  // e.g. with a study's ladder progress
   void on_checkpoint(const std::string& path, std::int64_t step, double time);
   // Polled by the solver once per step; doubles as its heartbeat.
   bool should_stop();

@@ -25,6 +25,7 @@
 #include "worker/pool/pool_options.h"
 #include "worker/pool/result_manifest.h"
 #include "worker/pool/server_link.h"
+#include "worker/pool/study_attempt.h"
 
 namespace sph::worker::pool {
 namespace {
@@ -243,7 +244,9 @@ void run_attempt(const v1::ClaimResponse& claim, const PoolOptions& o, ServerLin
                std::chrono::duration<double>(o.checkpoint_interval_seconds);
       };
   }
-  const RunOutcome r = run_case(c, MPI_COMM_WORLD, opt);
+  // A study job runs the case's ladder; its outcome reads like a single run's.
+  const RunOutcome r = claim.has_study() ? run_study_attempt(c, claim, opt, reporter.get())
+                                         : run_case(c, MPI_COMM_WORLD, opt);
   if (rank != 0) return;
 
   reporter->stop();
