@@ -1,5 +1,7 @@
 #include "case/study_ladder.h"
 
+#include "case/number_text.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,9 +12,7 @@ namespace sph {
 namespace {
 
 std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
+  return number_text(v);
 }
 
 // The requested spacings, before snapping, coarsest first.

@@ -1,5 +1,7 @@
 #include "case/validate.h"
 
+#include "case/number_text.h"
+
 #include <cmath>
 #include <map>
 #include <set>
@@ -48,11 +50,7 @@ class Validator {
   void non_negative(double v, const std::string& field) {
     if (!finite(v) || v < 0) error(field, "must be >= 0 (got " + num(v) + ")");
   }
-  static std::string num(double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return buf;
-  }
+  static std::string num(double v) { return number_text(v); }
 
   void vec(const v1::Vec3& v, const std::string& field) {
     if (!finite(v.x()) || !finite(v.y()) || !finite(v.z())) error(field, "must be finite");
@@ -318,8 +316,8 @@ class Validator {
       vec(lf.center(), cat(g, "center"));
       vec(lf.gradient_x(), cat(g, "gradient_x"));
       vec(lf.gradient_y(), cat(g, "gradient_y"));
-      if (c_.dimension() == 2 && (lf.gradient_z().x() != 0 || lf.gradient_z().y() != 0 ||
-                                  lf.gradient_z().z() != 0))
+      if (c_.dimension() == 2 &&
+          (lf.gradient_z().x() != 0 || lf.gradient_z().y() != 0 || lf.gradient_z().z() != 0))
         error(cat(g, "gradient_z"), "must be 0 in 2D cases");
       else if (c_.dimension() == 3)
         vec(lf.gradient_z(), cat(g, "gradient_z"));

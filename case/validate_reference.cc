@@ -1,5 +1,7 @@
 #include "case/validate_reference.h"
 
+#include "case/number_text.h"
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -8,9 +10,7 @@ namespace sph {
 namespace {
 
 std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
+  return number_text(v);
 }
 
 class ReferenceValidator {

@@ -13,6 +13,7 @@
 
 #include "analysis/conduction.h"
 #include "case/load.h"
+#include "case/number_text.h"
 #include "tests/support/result_reader.h"
 #include "tests/support/test_cases.h"
 
@@ -20,9 +21,7 @@ namespace sph {
 namespace {
 
 std::string num(double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.10g", v);
-  return b;
+  return number_text(v, 10);
 }
 
 // Max |T - exact| over fluid and rigid particles of the last snapshot.

@@ -15,6 +15,7 @@
 #include <cstdio>
 
 #include "case/load.h"
+#include "case/number_text.h"
 #include "tests/support/result_reader.h"
 #include "tests/support/test_cases.h"
 
@@ -22,9 +23,7 @@ namespace sph {
 namespace {
 
 std::string num(double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.10g", v);
-  return b;
+  return number_text(v, 10);
 }
 
 // lambda exp(lambda^2) erf(lambda) = St/sqrt(pi) by bisection (the left side increases).
