@@ -1109,10 +1109,10 @@ typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
     rep.violated = true;
     char buf[320];
     std::snprintf(buf, sizeof buf,
-                  "contact too stiff for the time step: k_c = %.4g needs %d contact sub-steps of "
-                  "%.3e per fluid step of %.3e (guards.max_contact_substeps = %lld) at step "
-                  "%lld, t = %.9g",
-                  c_.contact().stiffness(), n, dt / n, dt,
+                  "contact too stiff for the time step: k_c = %.4g, d_c = %.4g need %d contact "
+                  "sub-steps of %.3e per fluid step of %.3e (guards.max_contact_substeps = "
+                  "%lld) at step %lld, t = %.9g",
+                  c_.contact().stiffness(), c_.contact().damping(), n, dt / n, dt,
                   static_cast<long long>(guards_.max_contact_substeps),
                   static_cast<long long>(step_), t_);
     rep.diagnosis = buf;

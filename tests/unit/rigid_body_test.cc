@@ -193,6 +193,38 @@ TEST(RigidBody, HeadOnCollisionConservesMomentumAndLosesEnergyByTheDamping) {
   }
 }
 
+// A dashpot far stronger than the spring (zeta = 22, the regime of Fuchs 2021's 3D powder
+// parameters): the explicit dashpot is stable only for sub-steps h < 2 m / d_c, 40 times below
+// the spring's bound 0.22 sqrt(m/k_c) here, so a step bounded by the spring alone flings the
+// bodies apart. With the dashpot's bound they stick and creep apart as the force law says.
+TEST(RigidBody, OverdampedContactStaysStable) {
+  const double k = 1e4, d = 1e3, m = 1000 * 0.01 * 0.01;
+  const double e_ref = reference_restitution(k, d, m / 2, 0.2);
+  v1::Case c = parse_case_text(R"(
+    dimension: 2 dx: 0.01
+    domain { lo { x: -0.5 y: -0.5 } hi { x: 0.5 y: 0.5 } }
+    materials { name: "s" phase: SOLID density: 1000 }
+    bodies { name: "left" material: "s" shape { points { points { x: -0.02 y: 0.005 } } } initial_velocity { x: 0.1 } }
+    bodies { name: "right" material: "s" shape { points { points { x: 0.02 y: 0.005 } } } initial_velocity { x: -0.1 } }
+    contact { stiffness: 1e4 damping: 1e3 }
+    time { end_time: 0.5 fixed_dt: 1e-3 }
+    output { series_interval: 1e-3 })");
+  const std::string out = test::output_dir("overdamped_collision");
+  const RunOutcome r = test::run(c, out);
+  ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+  test::ResultReader rr(out + "/result.h5");
+  const auto vel = rr.series("bodies/velocity");  // [samples][2 bodies][2]
+  double vmax = 0;
+  for (double v : vel) vmax = std::max(vmax, std::abs(v));
+  const std::size_t last = vel.size() - 4;
+  const double e = (vel[last + 2] - vel[last + 0]) / 0.2;
+  std::printf("overdamped collision (zeta 22): restitution %.3e, force law %.3e, max |v| %.4f\n", e,
+              e_ref, vmax);
+  EXPECT_LE(vmax, 0.1 + 1e-12);  // the dashpot only takes energy out
+  EXPECT_LT(std::abs(m * (vel[last + 0] + vel[last + 2])), 1e-15);
+  EXPECT_NEAR(e, e_ref, 0.2 * e_ref + 1e-4);
+}
+
 }  // namespace
 }  // namespace sph
 

@@ -1,53 +1,78 @@
 #!/usr/bin/env python3
-"""Renders frames of a phase-change result (e.g. the gastric bolus scene) and a page of
-invariants: python3 render.py RESULT.h5 OUT_DIR [NAME]. Bolus (rigid) particles black, chyme
-(melted) red, gastric juice coloured by speed, walls light grey."""
-import sys, os
-import h5py, numpy as np
-import matplotlib
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
+"""Renders frames of a phase-change result and a page of its invariants (2D scenes):
 
-path, out = sys.argv[1], sys.argv[2]
-name = sys.argv[3] if len(sys.argv) > 3 else "gastric"
-f = h5py.File(path, "r")
+    python3 render.py RESULT.h5 OUT_DIR [NAME] [--scalar temperature|concentration]
+        [--speed-max V] [--labels SOLID,MELT,FLUID] [--frames N]
+
+Rigid (solid) particles black, melted particles (the second material) red, the first fluid
+coloured by speed, walls light grey. Writes NAME_frames.png and NAME_invariants.png (solid
+mass and number of bodies over time; the scalar's range against its bounds)."""
+import argparse
+import os
+
+import h5py
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+ap = argparse.ArgumentParser()
+ap.add_argument("result")
+ap.add_argument("out")
+ap.add_argument("name", nargs="?", default="gastric")
+ap.add_argument("--scalar", default="concentration")
+ap.add_argument("--speed-max", type=float, default=100)
+ap.add_argument("--labels", default="bolus,chyme,gastric juice")
+ap.add_argument("--frames", type=int, default=6)
+a = ap.parse_args()
+solid_label, melt_label, fluid_label = a.labels.split(",")
+
+f = h5py.File(a.result, "r")
 S = f["snapshots"]
 keys = sorted(S.keys())
-pick = [keys[i] for i in np.linspace(0, len(keys) - 1, 6).round().astype(int)]
-fig, axes = plt.subplots(3, 2, figsize=(12, 8.4))
-mats = f["meta"].attrs.get("materials", None)
-for ax, k in zip(axes.ravel(), pick):
+pick = [keys[i] for i in np.linspace(0, len(keys) - 1, a.frames).round().astype(int)]
+rows = (a.frames + 1) // 2
+x0 = S[keys[0]]["position"][:]
+aspect = np.ptp(x0[:, 1]) / max(np.ptp(x0[:, 0]), 1e-300)
+fig, axes = plt.subplots(rows, 2, figsize=(12, 1.0 + rows * 6 * aspect + 0.4 * rows))
+for ax, k in zip(np.ravel(axes), pick):
     s = S[k]
     x = s["position"][:]
     kind = s["kind"][:]
     mat = s["material"][:]
     v = np.linalg.norm(s["velocity"][:], axis=1)
     wall, rigid, fluid = kind == 1, kind == 2, kind == 0
-    chyme = fluid & (mat == 1)
-    juice = fluid & (mat == 0)
+    melt = fluid & (mat == 1)
+    carrier = fluid & (mat == 0)
     ms = 2.0
     ax.scatter(x[wall, 0], x[wall, 1], s=ms, c="0.85", lw=0)
-    sc = ax.scatter(x[juice, 0], x[juice, 1], s=ms, c=v[juice], cmap="viridis", vmin=0, vmax=100, lw=0)
-    ax.scatter(x[chyme, 0], x[chyme, 1], s=3 * ms, c="red", lw=0)
+    sc = ax.scatter(x[carrier, 0], x[carrier, 1], s=ms, c=v[carrier], cmap="viridis", vmin=0,
+                    vmax=a.speed_max, lw=0)
+    ax.scatter(x[melt, 0], x[melt, 1], s=3 * ms, c="red", lw=0)
     ax.scatter(x[rigid, 0], x[rigid, 1], s=3 * ms, c="k", lw=0)
-    ax.set_title("t = %.3f: %d bolus particles, %d chyme" % (s.attrs["time"], rigid.sum(), chyme.sum()))
+    ax.set_title("t = %.4g: %d %s particles, %d %s" % (s.attrs["time"], rigid.sum(), solid_label,
+                                                       melt.sum(), melt_label), fontsize=9)
     ax.set_aspect("equal")
-    ax.set_xticks([]); ax.set_yticks([])
-fig.colorbar(sc, ax=axes.ravel().tolist(), shrink=0.6, label="speed of the gastric juice")
-os.makedirs(out, exist_ok=True)
-fig.savefig(os.path.join(out, name + "_frames.png"), dpi=90)
+    ax.set_xticks([])
+    ax.set_yticks([])
+fig.colorbar(sc, ax=np.ravel(axes).tolist(), shrink=0.6, label="speed of the " + fluid_label)
+os.makedirs(a.out, exist_ok=True)
+fig.savefig(os.path.join(a.out, a.name + "_frames.png"), dpi=90)
 
 ph = f["series/phase"]
 t = f["series/bodies/time"][:]
 m = f["series/bodies/mass"][:]
 fig, ax = plt.subplots(1, 2, figsize=(11, 3.5))
-ax[0].plot(t, np.nansum(m, axis=1) / np.nansum(m[0]), label="bolus mass / initial")
-ax[0].plot(t, ph["active_bodies"][:] / ph["active_bodies"][0], label="boluses / initial")
-ax[0].set_xlabel("t"); ax[0].legend()
+ax[0].plot(t, np.nansum(m, axis=1) / np.nansum(m[0]), label="%s mass / initial" % solid_label)
+ax[0].plot(t, ph["active_bodies"][:] / ph["active_bodies"][0], label="bodies / initial")
+ax[0].set_xlabel("t")
+ax[0].legend()
 d = f["series/diagnostics"]
-ax[1].plot(d["time"][:], d["concentration_min"][:], label="C min")
-ax[1].plot(d["time"][:], d["concentration_max"][:], label="C max")
-ax[1].set_xlabel("t"); ax[1].legend()
+ax[1].plot(d["time"][:], d[a.scalar + "_min"][:], label=a.scalar + " min")
+ax[1].plot(d["time"][:], d[a.scalar + "_max"][:], label=a.scalar + " max")
+ax[1].set_xlabel("t")
+ax[1].legend()
 fig.tight_layout()
-fig.savefig(os.path.join(out, name + "_invariants.png"), dpi=90)
-print("wrote", os.path.join(out, name + "_frames.png"), os.path.join(out, name + "_invariants.png"))
+fig.savefig(os.path.join(a.out, a.name + "_invariants.png"), dpi=90)
+print("wrote", os.path.join(a.out, a.name + "_frames.png"), os.path.join(a.out, a.name + "_invariants.png"))

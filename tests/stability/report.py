@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Writes docs/stability.md from a log of the stability suite (tests/stability/run.sh) and the
+results the hard cases left under the build's test-output/: per case the verdict, what it
+asserted and measured (printed by the test), its figures over time, and a plot of density
+deviation, mechanical energy and mass drift against time.
+
+    report.py LOG TEST_OUTPUT_DIR PAGE.md IMAGE_DIR reduced|full"""
+import os
+import re
+import subprocess
+import sys
+
+import h5py
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+log_path, test_out, page, image_dir, size = sys.argv[1:6]
+log = open(log_path).read().splitlines()
+
+# Test blocks: "[ RUN      ] Suite.Name" ... "[       OK ] Suite.Name (123 ms)" or FAILED.
+blocks, current = [], None
+for line in log:
+    m = re.match(r"\[ RUN      \] (\S+)", line)
+    if m:
+        current = {"name": m.group(1), "lines": [], "verdict": "did not finish", "ms": None}
+        blocks.append(current)
+        continue
+    m = re.match(r"\[\s+(OK|FAILED)\s+\] (\S+) \((\d+) ms\)", line)
+    if m and current and m.group(2) == current["name"]:
+        current["verdict"] = "passed" if m.group(1) == "OK" else "FAILED"
+        current["ms"] = int(m.group(3))
+        current = None
+        continue
+    if current is not None:
+        current["lines"].append(line)
+
+suite_wall = next((l for l in log if l.startswith("suite wall time")), "")
+try:
+    rev = subprocess.check_output(["git", "rev-parse", "--short", "HEAD"],
+                                  cwd=os.path.dirname(os.path.abspath(__file__))).decode().strip()
+except Exception:  # not a checkout
+    rev = "unknown"
+
+os.makedirs(image_dir, exist_ok=True)
+
+
+def plot_case(case, png):
+    """Density deviation, mechanical energy and mass drift of result.h5 against time."""
+    path = os.path.join(test_out, "stability_" + case, "result.h5")
+    if not os.path.exists(path):
+        return False
+    f = h5py.File(path, "r")
+    d = f["series/diagnostics"]
+    t = d["time"][:]
+    fig, ax = plt.subplots(1, 3, figsize=(13, 3.2))
+    ax[0].plot(t, d["max_density_deviation"][:])
+    ax[0].set_title("max |rho/rho0 - 1|")
+    energy = None
+    for key in ("kinetic_energy", "potential_energy"):
+        if key in d:
+            energy = d[key][:] if energy is None else energy + d[key][:]
+    if energy is not None:
+        ax[1].plot(t, energy)
+        ax[1].set_title("fluid kinetic + potential energy")
+    if "mass" in d:
+        m = d["mass"][:]
+        if "bodies" in f["series"] and "mass" in f["series/bodies"]:
+            m = m + np.nansum(f["series/bodies/mass"][:], axis=1)
+        ax[2].plot(t, m / m[0] - 1)
+        ax[2].set_title("mass drift (fluid + bodies)")
+    for a in ax:
+        a.set_xlabel("t")
+    fig.suptitle(case)
+    fig.tight_layout()
+    fig.savefig(png, dpi=80)
+    plt.close(fig)
+    return True
+
+
+out = []
+out.append("# Stability suite\n")
+out.append("Written by `tests/stability/run.sh%s` (runs the suite, then `tests/stability/report.py`); "
+           "do not edit by hand. Code version %s; %s. This page: the **%s** size%s.\n"
+           % (" --full" if size == "full" else "", rev, suite_wall or "suite wall time not recorded",
+              size, " (ctest's; `run.sh --full` runs the case files as shipped)" if size == "reduced" else ""))
+out.append("Each hard case runs long and asserts: every diagnostic finite, the run completes, density "
+           "deviation bounded, no fluid inside walls or bodies (solid-fraction guard), no spurious growth "
+           "of mechanical energy, mass exact (and momentum where it must hold). Each guard has a run that "
+           "trips it (`GuardsTrip.*`); an unstable job ends FAILED through the service "
+           "(`sph_unstable_job_test`, not run by this script).\n")
+out.append("| test | verdict | wall |\n|---|---|---:|")
+for b in blocks:
+    out.append("| %s | %s | %s |" % (b["name"], b["verdict"],
+                                     "%.1f s" % (b["ms"] / 1000) if b["ms"] is not None else "-"))
+out.append("")
+for b in blocks:
+    if not b["name"].startswith("Stability."):
+        continue
+    out.append("## %s (%s)\n" % (b["name"], b["verdict"]))
+    out.append("```")
+    out.extend(l for l in b["lines"] if l.strip())
+    out.append("```\n")
+    m = next((re.match(r"(\w+): dx = ", l) for l in b["lines"] if re.match(r"\w+: dx = ", l)), None)
+    if m:
+        png = "%s_%s.png" % (m.group(1), size)
+        if plot_case(m.group(1), os.path.join(image_dir, png)):
+            out.append("![%s](stability/%s)\n" % (m.group(1), png))
+guards = [b for b in blocks if b["name"].startswith("GuardsTrip.")]
+if guards:
+    out.append("## Guards tripped by real runs\n")
+    for b in guards:
+        # The test prints "<name>: <the run's diagnosis>".
+        diag = [l.split(": ", 1)[1].strip() for l in b["lines"] if re.match(r"^[\w]+: ", l)]
+        out.append("- `%s`: %s%s" % (b["name"], b["verdict"], (": " + diag[0][:300]) if diag else ""))
+    out.append("")
+open(page, "w").write("\n".join(out) + "\n")
+print("wrote", page)
