@@ -88,6 +88,9 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
     const bool rigid = kind[i] == Kind::kRigid;
     const bool contacts = contact && rigid;
     const bool all = fluid || (rigid && rigid_all);
+    // With conduction, a wall's Dirichlet mirror value averages the rigid particles around it
+    // too (see ScalarDiffusion::extrapolate_walls), so walls list them after their fluid.
+    const bool wall_rigid = rigid_all && kind[i] == Kind::kWall;
     if (!fluid && !contacts && !all) {
       bool any = false;
       for (int k = 0; k < kStencil && !any; ++k)
@@ -108,7 +111,7 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
         const double r2 = (xi - x[j]).squaredNorm();
         if (fluid || kind[j] == Kind::kFluid) {
           if (r2 < rc2) nbr_.push_back(j);
-        } else if (all && r2 < rc2) {
+        } else if ((all || (wall_rigid && kind[j] == Kind::kRigid)) && r2 < rc2) {
           others_.push_back(j);
         }
         if (contacts && kind[j] != Kind::kFluid && r2 < cr2 &&

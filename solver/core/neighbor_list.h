@@ -28,7 +28,8 @@ class NeighborList {
   // plus the ghost layer) and builds the neighbour lists of the owned particles. Fluid
   // particles get all neighbours within rc. Wall and rigid particles get their fluid
   // neighbours (all the wall condition needs) and, with `rigid_all`, rigid particles also
-  // their other neighbours after those (conduction inside and between bodies).
+  // their other neighbours after those (conduction inside and between bodies) and wall
+  // particles their rigid neighbours after those (the Dirichlet mirror of conduction).
   void build(const ParticleStore<D>& s, const CellGrid<D>& grid, const CellBox<D>& box, double rc,
              const ContactQuery* contact = nullptr, bool rigid_all = false);
 

@@ -8,7 +8,10 @@
 // and positions and densities at t^{n+1}.
 //
 // Walls: a wall with a schedule is a Dirichlet boundary. Its particles carry the mirror value
-// T_w = 2 T_D - T~, T~ the Shepard average of the fluid around the wall particle, the way
+// T_w = 2 T_D - T~, T~ the Shepard average of the fluid and rigid particles around the wall
+// particle (a mirror of the fluid alone drove a solidified grain resting on a cooled wall
+// 7% of the wall's temperature jump below the wall temperature: its cold particles conducted
+// with the mirror of the hot fluid beside them), the way
 // Adami 2012 eqs. 22-23 impose a no-slip velocity: the profile then continues linearly
 // through the wall and T_D holds at the wall surface (holding the particles at T_D itself
 // would make the wall a second medium and the boundary condition only first order). They
@@ -92,7 +95,7 @@ class ScalarDiffusion {
       }
   }
 
-  // Mirror values of the owned Dirichlet wall particles at time t from their fluid
+  // Mirror values of the owned Dirichlet wall particles at time t from their fluid and rigid
   // neighbours; the caller then refreshes the ghosts of values().
   void extrapolate_walls(const NeighborList<D>& nl, double t,
                          const Column<std::uint16_t>& wall_index) {
@@ -101,7 +104,7 @@ class ScalarDiffusion {
       const auto& f = walls_[wall_index[w]];
       if (!f) continue;
       double sw = 0, sv = 0;
-      for (const std::uint32_t* bp = nl.begin(w); bp != nl.fluid_end(w); ++bp) {
+      for (const std::uint32_t* bp = nl.begin(w); bp != nl.end(w); ++bp) {
         const double W = k_.W((s_.x[w] - s_.x[*bp]).norm());
         sw += W;
         sv += W * value_[*bp];

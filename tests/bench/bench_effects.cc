@@ -1,5 +1,6 @@
 // What each effect costs (not a test): one scene, a disk settling in a heated box, run as
-// fluid only, + heat conduction, + a rigid body, + contact, + all, and for each the time per
+// fluid only, + heat conduction, + concentration diffusion, + a rigid body, + contact, + heat
+// with bodies and contact, + phase change (the disk melting), and for each the time per
 // step by unit and the per-particle storage by unit. A unit a scene does not use must show
 // no time and no storage.
 //
@@ -17,30 +18,47 @@
 
 namespace {
 
-std::string scene(double dx, bool heat, bool body, bool contact) {
+struct Effects {
+  bool heat = false, body = false, contact = false, concentration = false, phase = false;
+};
+
+std::string scene(double dx, const Effects& e) {
   char head[256];
   std::snprintf(
       head, sizeof head,
       "dimension: 2 dx: %.10g domain { lo { x: -0.003 y: -0.003 } hi { x: 0.053 y: 0.053 } }\n",
       dx);
   std::string t = head;
+  const std::string thermal = e.heat ? "heat_capacity: 4000 thermal_conductivity: 0.6 " : "";
+  const std::string diffusive = e.concentration ? "diffusivity: 1e-6 " : "";
   t +=
-      R"(materials { name: "fluid" density: 1000 eos { sound_speed: 1 } kinematic_viscosity: 1e-5 )";
-  if (heat) t += "heat_capacity: 4000 thermal_conductivity: 0.6 ";
-  t += "}\n";
+      R"(materials { name: "fluid" density: 1000 eos { sound_speed: 1 } kinematic_viscosity: 1e-5 )" +
+      thermal + diffusive + "}\n";
   t += R"(materials { name: "solid" phase: SOLID density: 2000 )";
-  if (heat) t += "heat_capacity: 500 thermal_conductivity: 20 ";
-  t += "}\n";
+  if (e.heat) t += "heat_capacity: 500 thermal_conductivity: 20 ";
+  t += diffusive + "}\n";
+  // The melt of the disk (phase change): a second fluid phase.
+  if (e.phase)
+    t +=
+        R"(materials { name: "melt" density: 2000 eos { sound_speed: 1 } kinematic_viscosity: 1e-5 )" +
+        std::string("heat_capacity: 500 thermal_conductivity: 20 }\n");
   t += R"(fluids { material: "fluid" shape { box { lo { x: 0 y: 0 } hi { x: 0.05 y: 0.05 } } } })";
   t += "\nwalls { shape { shell { inner { box { lo { x: 0 y: 0 } hi { x: 0.05 y: 0.05 } } } } } ";
-  if (heat) t += "temperature { value { constant: 350 } } ";
+  if (e.heat) t += "temperature { value { constant: 350 } } ";
+  if (e.concentration) t += "concentration { value { constant: 1 } } ";
   t += "}\n";
-  if (body)
+  if (e.body)
     t +=
         R"(bodies { name: "disk" material: "solid" shape { ball { center { x: 0.025 y: 0.006 } radius: 0.005 } } }
 )";
-  if (contact) t += "contact { stiffness: 1e5 damping: 1 }\n";
-  if (heat) t += "thermal { initial_temperature: 300 }\n";
+  if (e.contact) t += "contact { stiffness: 1e5 damping: 1 }\n";
+  if (e.heat) t += "thermal { initial_temperature: 300 }\n";
+  if (e.concentration) t += "diffusion { initial_concentration: 0 }\n";
+  // Melts where the hot walls have warmed the disk past 301 (within the first steps).
+  if (e.phase)
+    t +=
+        R"(phase_transitions { solid_material: "solid" fluid_material: "melt" driver: TEMPERATURE transition_value: 300.5 hysteresis: 0.2 reversible: true }
+)";
   t += R"(fluid_model { density: SUMMATION transport_velocity: true }
 gravity { acceleration { y: -9.81 } }
 time { end_time: 1e9 }
@@ -104,14 +122,18 @@ int main(int argc, char** argv) {
         dx, steps);
   const struct {
     const char* label;
-    bool heat, body, contact;
-  } variants[] = {{"fluid only", false, false, false},
-                  {"+ heat", true, false, false},
-                  {"+ rigid body", false, true, false},
-                  {"+ body + contact", false, true, true},
-                  {"+ heat + body + contact", true, true, true}};
+    Effects effects;
+  } variants[] = {
+      {"fluid only", {}},
+      {"+ heat", {.heat = true}},
+      {"+ concentration", {.concentration = true}},
+      {"+ rigid body", {.body = true}},
+      {"+ body + contact", {.body = true, .contact = true}},
+      {"+ heat + body + contact", {.heat = true, .body = true, .contact = true}},
+      {"+ heat + phase change", {.heat = true, .body = true, .contact = true, .phase = true}},
+  };
   for (const auto& v : variants)
-    run(v.label, sph::parse_case_text(scene(dx, v.heat, v.body, v.contact)), steps, MPI_COMM_WORLD);
+    run(v.label, sph::parse_case_text(scene(dx, v.effects)), steps, MPI_COMM_WORLD);
   MPI_Finalize();
   return 0;
 }

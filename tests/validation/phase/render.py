@@ -2,10 +2,11 @@
 """Renders frames of a phase-change result and a page of its invariants (2D scenes):
 
     python3 render.py RESULT.h5 OUT_DIR [NAME] [--scalar temperature|concentration]
-        [--speed-max V] [--labels SOLID,MELT,FLUID] [--frames N]
+        [--speed-max V] [--labels SOLID,MELT,FLUID] [--frames N] [--plane xy|xz]
 
 Rigid (solid) particles black, melted particles (the second material) red, the first fluid
-coloured by speed, walls light grey. Writes NAME_frames.png and NAME_invariants.png (solid
+coloured by speed, walls light grey. A 3D result is drawn as a projection on --plane
+(default xy, seen from above) of the solid and melted particles only. Writes NAME_frames.png and NAME_invariants.png (solid
 mass and number of bodies over time; the scalar's range against its bounds)."""
 import argparse
 import os
@@ -25,6 +26,7 @@ ap.add_argument("--scalar", default="concentration")
 ap.add_argument("--speed-max", type=float, default=100)
 ap.add_argument("--labels", default="bolus,chyme,gastric juice")
 ap.add_argument("--frames", type=int, default=6)
+ap.add_argument("--plane", default="xy")
 a = ap.parse_args()
 solid_label, melt_label, fluid_label = a.labels.split(",")
 
@@ -33,12 +35,15 @@ S = f["snapshots"]
 keys = sorted(S.keys())
 pick = [keys[i] for i in np.linspace(0, len(keys) - 1, a.frames).round().astype(int)]
 rows = (a.frames + 1) // 2
+axis = {"x": 0, "y": 1, "z": 2}
+ia, ib = axis[a.plane[0]], axis[a.plane[1]]
 x0 = S[keys[0]]["position"][:]
-aspect = np.ptp(x0[:, 1]) / max(np.ptp(x0[:, 0]), 1e-300)
+three_d = x0.shape[1] == 3
+aspect = np.ptp(x0[:, ib]) / max(np.ptp(x0[:, ia]), 1e-300)
 fig, axes = plt.subplots(rows, 2, figsize=(12, 1.0 + rows * 6 * aspect + 0.4 * rows))
 for ax, k in zip(np.ravel(axes), pick):
     s = S[k]
-    x = s["position"][:]
+    x = s["position"][:][:, [ia, ib]]
     kind = s["kind"][:]
     mat = s["material"][:]
     v = np.linalg.norm(s["velocity"][:], axis=1)
@@ -46,6 +51,12 @@ for ax, k in zip(np.ravel(axes), pick):
     melt = fluid & (mat == 1)
     carrier = fluid & (mat == 0)
     ms = 2.0
+    if three_d:  # a projection: the carrier fluid and walls would hide the bodies
+        wall[:] = False
+        carrier[:] = False
+        box = x0[:, [ia, ib]]
+        ax.set_xlim(box[:, 0].min(), box[:, 0].max())
+        ax.set_ylim(box[:, 1].min(), box[:, 1].max())
     ax.scatter(x[wall, 0], x[wall, 1], s=ms, c="0.85", lw=0)
     sc = ax.scatter(x[carrier, 0], x[carrier, 1], s=ms, c=v[carrier], cmap="viridis", vmin=0,
                     vmax=a.speed_max, lw=0)
