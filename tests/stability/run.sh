@@ -17,5 +17,5 @@ t0=$SECONDS
 # A failing case is reported on the page, not fatal to the others.
 "$build/tests/stability/sph_stability_tests" --gtest_color=no 2>&1 | tee "$log" || true
 echo "suite wall time: $((SECONDS - t0)) s" >>"$log"
-/usr/bin/env python3 "$root/tests/stability/report.py" "$log" "$build/test-output" \
+/usr/bin/python3 "$root/tests/stability/report.py" "$log" "$build/test-output" \
   "$root/docs/stability.md" "$root/docs/stability" $([ $full = 1 ] && echo full || echo reduced)

@@ -119,8 +119,10 @@ def settling_sphere(runs, out, lines):
     lines += ["## Sphere settling in a box (ten Cate et al. 2002, Re = 1.5)", "",
               f"Schiller-Naumann terminal speed in unbounded fluid: {u_sn:.4f} m/s (Re = {re_sn:.2f}); ten Cate's "
               f"measured speed in the 100 x 100 x 160 mm box: {-tc[:, 1].min():.4f} m/s (walls slow the sphere).", "",
-              "| D/dx | particles | max settling speed [m/s] | Re | vs Schiller-Naumann | vs ten Cate | wall time |",
-              "|---|---|---|---|---|---|---|"]
+              "Settling speed = mean -u_z over the last 40% of the run (t >= 1.2 s of 2 s: the speed is on its "
+              "plateau, varying by 1%, and the sphere still 3.5 D above the bottom).", "",
+              "| D/dx | particles | settling speed [m/s] | max [m/s] | Re | vs Schiller-Naumann | vs ten Cate | wall time |",
+              "|---|---|---|---|---|---|---|---|"]
     plt.figure(figsize=(7, 4))
     plt.plot(tc[:, 0], tc[:, 1], "k.", label="ten Cate 2002 (PIV)")
     for name, path in runs:
@@ -128,9 +130,11 @@ def settling_sphere(runs, out, lines):
         t, v = b["time"], b["velocity"][:, 0, :]
         dx = float(meta(f, "dx"))
         vmax = -v[:, 2].min()
+        vs = -v[t >= 0.6 * t[-1], 2].mean()
         n = f["/snapshots"][sorted(f["/snapshots"])[0]]["kind"].shape[0]
-        lines.append(f"| {D / dx:.0f} | {n} | {vmax:.4f} | {rho_f * vmax * D / mu:.2f} | {100 * (vmax / u_sn - 1):+.1f}% | "
-                     f"{100 * (vmax / -tc[:, 1].min() - 1):+.1f}% | {wall_seconds(path):.0f} s |")
+        lines.append(f"| {D / dx:.0f} | {n} | {vs:.4f} | {vmax:.4f} | {rho_f * vs * D / mu:.2f} | "
+                     f"{100 * (vs / u_sn - 1):+.1f}% | {100 * (vs / -tc[:, 1].min() - 1):+.1f}% | "
+                     f"{wall_seconds(path):.0f} s |")
         plt.plot(t, v[:, 2], label=f"sphd D/dx = {D / dx:.0f}")
     plt.axhline(-u_sn, color="gray", ls="--", label="Schiller-Naumann (unbounded)")
     plt.xlabel("t [s]")

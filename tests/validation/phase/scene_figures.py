@@ -1,0 +1,65 @@
+#!/usr/bin/env python3
+"""Prints the figures of the seed-scene runs (tests/validation/phase/seed_scenes.sh) as
+Markdown tables for tests/validation/reports/seed_scenes.md: per scene the run's size and
+wall time, mass conservation, the scalar's range against its bounds, and the solid over time.
+
+    scene_figures.py OUT_DIR"""
+import os
+import sys
+
+import h5py
+import numpy as np
+
+out = sys.argv[1]
+SCENES = [  # folder, scalar, bounds of the scalar (initial and boundary values), times to list
+    ("gastric_04", "concentration", (0.0, 1.0), [0, 0.2, 0.4, 0.6, 0.8, 1.0]),
+    ("powder_2d_coarse", "temperature", (0.0, 100.0), [0, 0.1, 0.25, 0.3, 0.4, 0.5, 0.55, 0.6, 0.7, 0.75]),
+    ("powder_3d_coarse", "temperature", (500.0, 1800.0), [0, 2.5e-5, 5e-5, 1e-4, 1.5e-4, 1.6e-4, 1.75e-4]),
+]
+for name, scalar, (lo, hi), times in SCENES:
+    path = os.path.join(out, name, "result.h5")
+    if not os.path.exists(path):
+        continue
+    f = h5py.File(path, "r")
+    meta = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f["meta"].attrs.items()}
+    d = f["series/diagnostics"]
+    t = d["time"][:]
+    ph = f["series/phase"]
+    b = f["series/bodies"]
+    tb = b["time"][:]
+    solid = np.nansum(b["mass"][:], axis=1)
+    snaps = f["snapshots"]
+    keys = sorted(snaps.keys())
+
+    def total_mass(k):
+        s = snaps[k]
+        return s["mass"][:][s["kind"][:] != 1].sum()
+
+    # Open boundaries change the total by the particles that crossed them.
+    m0 = total_mass(keys[0])
+    drift = max(abs(total_mass(k) / m0 - 1) for k in keys)
+    try:
+        wall = open(os.path.join(out, name, "wall_seconds")).read().strip()
+    except OSError:
+        wall = "?"
+    smin, smax = d[scalar + "_min"][:], d[scalar + "_max"][:]
+    print("### %s\n" % name)
+    print("dx %s, %s ranks, %d steps to t = %.4g, %d particles at the start, %s s wall; status %s.\n"
+          % (meta["dx"], meta["ranks"], int(d["step"][-1]), t[-1], len(snaps[keys[0]]["kind"]), wall,
+             meta["status"]))
+    print("| figure | value |\n|---|---|")
+    print("| %s range over the run | [%.4g, %.4g] (bounds [%g, %g]) |" % (scalar, smin.min(), smax.max(), lo, hi))
+    print("| max density deviation (after t = %.3g) | %.3f |" % (t[len(t) // 50], d["max_density_deviation"][len(t) // 50:].max()))
+    print("| total mass over snapshots, max relative change | %.1e%s |"
+          % (drift, " (gas in and out through the open boundaries)" if "open_boundaries" in f["series"] else ""))
+    print("| particles melted / solidified | %d / %d |" % (ph["melted"][-1], ph["solidified"][-1]))
+    print("")
+    print("| t | solid mass / initial | bodies | melted | solidified | %s min | %s max | max speed |" % (scalar, scalar))
+    print("|---|---|---|---|---|---|---|---|")
+    for tt in times:
+        k = int(np.argmin(abs(tb - tt)))
+        kd = int(np.argmin(abs(t - tt)))
+        print("| %.4g | %.3f | %d | %d | %d | %.4g | %.4g | %.3g |"
+              % (tb[k], solid[k] / solid[0], ph["active_bodies"][k], ph["melted"][k], ph["solidified"][k],
+                 smin[kd], smax[kd], d["max_speed"][kd]))
+    print("")
