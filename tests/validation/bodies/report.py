@@ -83,7 +83,7 @@ def migration(runs, out, lines):
     lines += ["## Disk migrating to the centre line of a shear flow (Fuchs 2021 Case 1, Re = 0.625)", "",
               "Released at y = H/4; the centre line is y = H/2 = 5 mm. References: Feng, Hu & Joseph 1994 (time in "
               "units of H/U_w = 0.5 s) and Feng 2002 via Hashemi 2012 (released at 3H/4, mirrored here).", "",
-              "| D/dx | final y [mm] | distance to centre line | final u_x [m/s] | final |v| / wall speed | wall time |",
+              "| D/dx | final y [mm] | distance to centre line | final u_x [m/s] | final speed / wall speed | wall time |",
               "|---|---|---|---|---|---|"]
     plt.figure(figsize=(7, 4))
     plt.plot(feng94[:, 0] * 0.5, feng94[:, 1] * H * 1e3, "k.", label="Feng, Hu & Joseph 1994")
@@ -155,6 +155,19 @@ def spheres_box(runs, out, lines):
         lines += [f"First contact at t = {first:.2f} (the paper: first wall contact at about 2.5 for its taller cube); "
                   f"kinetic energy of the bodies peaks at {ke.max():.3g} and ends at {ke[-1]:.3g}; largest body speed "
                   f"at t = {t[-1]:.1f}: {vmax:.3g}; wall time {wall_seconds(path):.0f} s.", ""]
+        # What the bodies and contact cost next to the fluid: the run's own per-unit timers.
+        steps = float(f["/series/diagnostics/step"][-1])
+        units = dict(kv.split("=") for kv in meta(f, "unit_seconds").split(","))
+        total = sum(float(v) for v in units.values())
+        kind = f["/snapshots"][sorted(f["/snapshots"])[0]]["kind"][:]
+        lines += [f"Cost per step by unit over the whole run ({int(steps)} steps, {len(kind)} particles of which "
+                  f"{int((kind == 2).sum())} rigid, {meta(f, 'ranks')} rank; `/meta/unit_seconds`), rigid-body and "
+                  "contact units next to the fluid's:", "",
+                  "| unit | ms per step | share |", "|---|---:|---:|"]
+        for u, sec in sorted(units.items(), key=lambda kv: -float(kv[1])):
+            if float(sec) / total >= 0.001:
+                lines.append(f"| {u} | {1e3 * float(sec) / steps:.2f} | {100 * float(sec) / total:.1f}% |")
+        lines.append("")
         plt.figure(figsize=(7, 4))
         plt.semilogy(t, ke + 1e-12, label="kinetic energy of the bodies")
         plt.semilogy(t, n.sum(axis=1) + 1e-12, label="contacting particle pairs")

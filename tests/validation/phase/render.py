@@ -38,9 +38,10 @@ rows = (a.frames + 1) // 2
 axis = {"x": 0, "y": 1, "z": 2}
 ia, ib = axis[a.plane[0]], axis[a.plane[1]]
 x0 = S[keys[0]]["position"][:]
-three_d = x0.shape[1] == 3
+dim = f["meta"].attrs["dimension"]
+three_d = int(dim.decode() if isinstance(dim, bytes) else dim) == 3  # positions have 3 columns in 2D too
 aspect = np.ptp(x0[:, ib]) / max(np.ptp(x0[:, ia]), 1e-300)
-fig, axes = plt.subplots(rows, 2, figsize=(12, 1.0 + rows * 6 * aspect + 0.4 * rows))
+fig, axes = plt.subplots(rows, 2, figsize=(12, 0.3 + rows * (5.2 * aspect + 0.35)), squeeze=False)
 for ax, k in zip(np.ravel(axes), pick):
     s = S[k]
     x = s["position"][:][:, [ia, ib]]
