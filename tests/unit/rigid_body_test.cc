@@ -150,6 +150,22 @@ double reference_restitution(double k, double d, double m_eff, double v0) {
   return v / v0;
 }
 
+// Two single-particle bodies (m = 0.1) approaching head-on at 0.1 each, k_c = 1e4, fixed
+// fluid step 1e-3 (no fluid: the contact sub-steps are the whole motion).
+v1::Case head_on_collision(double damping) {
+  v1::Case c = parse_case_text(R"(
+    dimension: 2 dx: 0.01
+    domain { lo { x: -0.5 y: -0.5 } hi { x: 0.5 y: 0.5 } }
+    materials { name: "s" phase: SOLID density: 1000 }
+    bodies { name: "left" material: "s" shape { points { points { x: -0.02 y: 0.005 } } } initial_velocity { x: 0.1 } }
+    bodies { name: "right" material: "s" shape { points { points { x: 0.02 y: 0.005 } } } initial_velocity { x: -0.1 } }
+    contact { stiffness: 1e4 }
+    time { end_time: 0.5 fixed_dt: 1e-3 }
+    output { series_interval: 1e-3 })");
+  c.mutable_contact()->set_damping(damping);
+  return c;
+}
+
 TEST(RigidBody, HeadOnCollisionConservesMomentumAndLosesEnergyByTheDamping) {
   // Two single-particle bodies approach head-on at 0.1 each; k_c = 1e4, d_c = 2 (zeta ~ 0.06).
   const double dx = 0.01, k = 1e4, d = 2.0, rho = 1000, m = rho * dx * dx;
@@ -163,15 +179,7 @@ TEST(RigidBody, HeadOnCollisionConservesMomentumAndLosesEnergyByTheDamping) {
   // The paper's contact time step (factor 1) and a 4x smaller one. The dashpot force uses the
   // mid-substep velocity, so the dissipation converges at first order (not second).
   for (double factor : {1.0, 0.25}) {
-    v1::Case c = parse_case_text(R"(
-      dimension: 2 dx: 0.01
-      domain { lo { x: -0.5 y: -0.5 } hi { x: 0.5 y: 0.5 } }
-      materials { name: "s" phase: SOLID density: 1000 }
-      bodies { name: "left" material: "s" shape { points { points { x: -0.02 y: 0.005 } } } initial_velocity { x: 0.1 } }
-      bodies { name: "right" material: "s" shape { points { points { x: 0.02 y: 0.005 } } } initial_velocity { x: -0.1 } }
-      contact { stiffness: 1e4 damping: 2 }
-      time { end_time: 0.5 fixed_dt: 1e-3 }
-      output { series_interval: 1e-3 })");
+    v1::Case c = head_on_collision(d);
     c.mutable_time()->set_cfl_factor(factor);
     const std::string out = test::output_dir("collision");
     const RunOutcome r = test::run(c, out);
@@ -200,15 +208,7 @@ TEST(RigidBody, HeadOnCollisionConservesMomentumAndLosesEnergyByTheDamping) {
 TEST(RigidBody, OverdampedContactStaysStable) {
   const double k = 1e4, d = 1e3, m = 1000 * 0.01 * 0.01;
   const double e_ref = reference_restitution(k, d, m / 2, 0.2);
-  v1::Case c = parse_case_text(R"(
-    dimension: 2 dx: 0.01
-    domain { lo { x: -0.5 y: -0.5 } hi { x: 0.5 y: 0.5 } }
-    materials { name: "s" phase: SOLID density: 1000 }
-    bodies { name: "left" material: "s" shape { points { points { x: -0.02 y: 0.005 } } } initial_velocity { x: 0.1 } }
-    bodies { name: "right" material: "s" shape { points { points { x: 0.02 y: 0.005 } } } initial_velocity { x: -0.1 } }
-    contact { stiffness: 1e4 damping: 1e3 }
-    time { end_time: 0.5 fixed_dt: 1e-3 }
-    output { series_interval: 1e-3 })");
+  v1::Case c = head_on_collision(d);
   const std::string out = test::output_dir("overdamped_collision");
   const RunOutcome r = test::run(c, out);
   ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
