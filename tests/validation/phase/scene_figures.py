@@ -44,8 +44,10 @@ for name, scalar, (lo, hi), times in SCENES:
         wall = "?"
     smin, smax = d[scalar + "_min"][:], d[scalar + "_max"][:]
     print("### %s\n" % name)
+    import re
+    dx = re.search(r"^dx: (\S+)", meta["case_text"], re.M).group(1)  # /meta/dx is rounded to 1e-6
     print("dx %s, %s ranks, %d steps to t = %.4g, %d particles at the start, %s s wall; status %s.\n"
-          % (meta["dx"], meta["ranks"], int(d["step"][-1]), t[-1], len(snaps[keys[0]]["kind"]), wall,
+          % (dx, meta["ranks"], int(d["step"][-1]), t[-1], len(snaps[keys[0]]["kind"]), wall,
              meta["status"]))
     print("| figure | value |\n|---|---|")
     print("| %s range over the run | [%.4g, %.4g] (bounds [%g, %g]) |" % (scalar, smin.min(), smax.max(), lo, hi))
@@ -56,7 +58,7 @@ for name, scalar, (lo, hi), times in SCENES:
     print("")
     print("| t | solid mass / initial | bodies | melted | solidified | %s min | %s max | max speed |" % (scalar, scalar))
     print("|---|---|---|---|---|---|---|---|")
-    for tt in times:
+    for tt in [x for x in times if x <= t[-1]] + ([t[-1]] if times[-1] > t[-1] else []):
         k = int(np.argmin(abs(tb - tt)))
         kd = int(np.argmin(abs(t - tt)))
         print("| %.4g | %.3f | %d | %d | %d | %.4g | %.4g | %.3g |"

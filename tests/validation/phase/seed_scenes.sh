@@ -3,7 +3,7 @@
 # renders frames and invariants for tests/validation/reports/seed_scenes.md:
 #   tests/validation/phase/seed_scenes.sh [BUILD_DIR] [OUT_DIR]
 # The 2D powder grains (dx 0.25, 157k steps) take about 40 min on one core, the 3D powder
-# melting (dx 2.5 um, 103k steps) about 70 min, the gastric boluses (dx 0.4) under 2 min.
+# melting (dx 2.5 um, 103k steps) about 100 min, the gastric boluses (dx 0.4) under 2 min.
 # A finished run is kept (delete its folder to redo it). SPHD_RANKS sets the ranks (default 1).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
