@@ -1,6 +1,7 @@
 #pragma once
 // Implementation of Simulation<D, K> (included by simulation.h; instantiated in
 // simulation_2d.cc and simulation_3d.cc).
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -983,7 +984,11 @@ std::map<std::string, std::string> Simulation<D, K>::metadata(const std::string&
   m["code_version"] = code_version();
   m["ranks"] = std::to_string(comm_.size());
   m["dimension"] = std::to_string(D);
-  m["dx"] = std::to_string(dx_);
+  {  // the shortest text that reads back as dx (to_string would print 2.5e-6 as 0.000003)
+    char buf[32];
+    const auto end = std::to_chars(buf, buf + sizeof buf, dx_).ptr;
+    m["dx"] = std::string(buf, end);
+  }
   m["kernel"] = K::kSupport == 3.0 ? "quintic_spline" : "wendland_c2";
   std::string units;
   for (const auto& u : units_) units += (units.empty() ? "" : ",") + u;
