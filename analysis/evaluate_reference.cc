@@ -15,16 +15,11 @@
 #include "analysis/series_data.h"
 #include "analysis/taylor_green.h"
 #include "case/materials.h"
+#include "case/number_text.h"
 #include "case/reference_table.h"
 
 namespace sph::analysis {
 namespace {
-
-std::string g(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 // Concatenation without `"literal" + std::string&&`, which GCC 12 warns about falsely
 // (-Wrestrict).
@@ -60,13 +55,15 @@ Measurement richardson_quantity(const v1::Case& c, const ResultReader& rr) {
   if (t.empty()) throw std::runtime_error("reference.richardson.series: the series is empty");
   const double at = r.has_time() ? r.time() : t.back();
   if (at > t.back() * (1 + 1e-9) + 1e-300)
-    throw std::runtime_error(cat({"reference.richardson.time: ", g(at),
-                                  " is after the run's last sample (t = ", g(t.back()), ")"}));
+    throw std::runtime_error(
+        cat({"reference.richardson.time: ", number_text(at),
+             " is after the run's last sample (t = ", number_text(t.back()), ")"}));
   Measurement m;
   m.quantity = interpolate(t, v, at) - r.offset();
   m.detail = cat(
       {r.series(), r.sum_components() ? " (sum)" : cat({"[", std::to_string(r.component()), "]"}),
-       " at t = ", g(at), r.offset() != 0 ? cat({" - ", g(r.offset())}) : "", ": ", g(m.quantity)});
+       " at t = ", number_text(at), r.offset() != 0 ? cat({" - ", number_text(r.offset())}) : "",
+       ": ", number_text(m.quantity)});
   return m;
 }
 
@@ -126,7 +123,7 @@ std::string complete_richardson(const v1::Case& c, const std::vector<double>& dx
   for (std::size_t j = 0; j < which.size(); ++j) {
     auto& m = levels[which[j]];
     m.error = est.errors[j];
-    m.detail += "; q* = " + g(est.extrapolated) + " (order " + g(est.order) +
+    m.detail += "; q* = " + number_text(est.extrapolated) + " (order " + number_text(est.order) +
                 (est.order_estimated ? ", estimated from the three finest levels)" : ", assumed)");
   }
   return "";
@@ -139,7 +136,7 @@ std::string describe_reference(const v1::Case& c) {
       return cat(
           {"mean |u_x - u_exact| / u_ref over the fluid at the end time (analytic start-up "
            "channel flow, u_ref = ",
-           g(channel_flow_velocity_scale(ref.channel_flow())), ")"});
+           number_text(channel_flow_velocity_scale(ref.channel_flow())), ")"});
     case v1::Reference::kHydrostatic:
       return "|p_bottom / (rho g (H + dx/2)) - 1|, first wall layer under the tank bottom at the "
              "end time (analytic)";
@@ -148,7 +145,7 @@ std::string describe_reference(const v1::Case& c) {
         return "mean |u - u_exact| / (U exp(-2 nu k^2 t)) over the fluid at the end time "
                "(analytic Taylor-Green field; the quantity column is the fitted decay rate)";
       return cat({"|decay rate / (-2 nu k^2) - 1|, rate fitted to log max|u| for t >= ",
-                  g(ref.taylor_green().fit_start()), " (analytic)"});
+                  number_text(ref.taylor_green().fit_start()), " (analytic)"});
     case v1::Reference::kConduction:
       return "max |T - T_erf| / |T_b - T_0| at the end time (analytic erf profile)";
     case v1::Reference::kSeriesData: {
@@ -161,13 +158,14 @@ std::string describe_reference(const v1::Case& c) {
     }
     case v1::Reference::kRichardson: {
       const auto& r = ref.richardson();
-      return cat({"|q - q*| / |q*| with q = ", r.series(),
-                  r.sum_components() ? " summed over components"
-                                     : cat({"[", std::to_string(r.component()), "]"}),
-                  r.has_time() ? cat({" at t = ", g(r.time())}) : " at the end",
-                  r.offset() != 0 ? cat({" minus ", g(r.offset())}) : "",
-                  ", q* by Richardson extrapolation from the finest levels",
-                  r.has_order() ? cat({" with order ", g(r.order())}) : " (order estimated)"});
+      return cat(
+          {"|q - q*| / |q*| with q = ", r.series(),
+           r.sum_components() ? " summed over components"
+                              : cat({"[", std::to_string(r.component()), "]"}),
+           r.has_time() ? cat({" at t = ", number_text(r.time())}) : " at the end",
+           r.offset() != 0 ? cat({" minus ", number_text(r.offset())}) : "",
+           ", q* by Richardson extrapolation from the finest levels",
+           r.has_order() ? cat({" with order ", number_text(r.order())}) : " (order estimated)"});
     }
     default:
       return "(no reference)";

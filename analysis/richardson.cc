@@ -1,4 +1,5 @@
 #include "analysis/richardson.h"
+#include "case/number_text.h"
 
 #include <cmath>
 #include <cstdio>
@@ -21,12 +22,6 @@ std::optional<double> solve_order(double h1, double h2, double h3, double ratio)
   return 0.5 * (lo + hi);
 }
 
-std::string g(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
 }  // namespace
 
 RichardsonEstimate richardson_extrapolate(const std::vector<double>& dx,
@@ -45,14 +40,16 @@ RichardsonEstimate richardson_extrapolate(const std::vector<double>& dx,
   } else {
     const double q1 = q[n - 3], d12 = q1 - qc, d23 = qc - qf;
     if (d23 == 0 || d12 / d23 <= 0) {
-      out.problem = "the three finest levels do not converge monotonically (q = " + g(q1) + ", " +
-                    g(qc) + ", " + g(qf) + "); give reference.richardson.order";
+      out.problem =
+          "the three finest levels do not converge monotonically (q = " + number_text(q1) + ", " +
+          number_text(qc) + ", " + number_text(qf) + "); give reference.richardson.order";
       return out;
     }
     const auto solved = solve_order(dx[n - 3], hc, hf, d12 / d23);
     if (!solved) {
-      out.problem = "no order in (0.05, 12) fits the three finest levels (q = " + g(q1) + ", " +
-                    g(qc) + ", " + g(qf) + "); give reference.richardson.order";
+      out.problem = "no order in (0.05, 12) fits the three finest levels (q = " + number_text(q1) +
+                    ", " + number_text(qc) + ", " + number_text(qf) +
+                    "); give reference.richardson.order";
       return out;
     }
     p = *solved;

@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "case/number_text.h"
 #include "case/study_ladder.h"
 
 namespace sph {
@@ -13,12 +14,6 @@ bool parse_double(const std::string& s, double& v) {
   char* end = nullptr;
   v = std::strtod(s.c_str(), &end);
   return !s.empty() && end != s.c_str() && *end == '\0';
-}
-
-std::string g(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
 }
 
 }  // namespace
@@ -71,12 +66,12 @@ std::string describe_study(const v1::StudySpec& spec) {
     std::string s = "--dx ";
     for (int i = 0; i < spec.dx_size(); ++i) {
       if (i > 0) s += ",";
-      s += g(spec.dx(i));
+      s += number_text(spec.dx(i));
     }
     return s;
   }
   return std::string("--refine ") + std::to_string(spec.refine()) + " (ratio " +
-         g(spec.has_ratio() ? spec.ratio() : kDefaultStudyRatio) + ")";
+         number_text(spec.has_ratio() ? spec.ratio() : kDefaultStudyRatio) + ")";
 }
 
 }  // namespace sph

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "case/number_text.h"
 #include "server/common/job_state.h"
 #include "server/store/job_ids.h"
 #include "server/store/schema.h"
@@ -76,16 +77,10 @@ std::string event_kind(const v1::JobEvent& e) {
   }
 }
 
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
 std::string resume_phrase(const v1::Job& j) {
   if (!j.has_checkpoint()) return "starts over (no checkpoint yet)";
   return "resumes from the checkpoint at step " + std::to_string(j.checkpoint().step()) +
-         ", t = " + num(j.checkpoint().time());
+         ", t = " + number_text(j.checkpoint().time());
 }
 
 }  // namespace
@@ -551,7 +546,8 @@ int JobStore::expire_leases(std::int64_t now_ms) {
       if (st.step()) pool = st.text(0);
     }
     const std::string lost_why = "no report from pool " + pool + " within the lease (" +
-                                 num(static_cast<double>(options_.lease_ms) / 1000.0) + " s)";
+                                 number_text(static_cast<double>(options_.lease_ms) / 1000.0) +
+                                 " s)";
     end_attempt(r.id, r.attempt, v1::ATTEMPT_LEASE_EXPIRED, lost_why, now_ms);
     std::int64_t lost = 0;
     {
