@@ -20,6 +20,19 @@
 // Materials marked fixed (a concentration held constant, e.g. gastric juice) are sources
 // that never change.
 //
+// The mirror value is second order but not monotone: where a wall particle's support holds
+// particles of very different values (hot gas beside a solid resting on a cold wall), T~ is
+// far from the value of the particle the wall conducts with, and 2 T_D - T~ drives that
+// particle past T_D (a solid at the wall temperature was cooled 0.9% of the jump below it).
+// Each particle a therefore limits the difference it sees to a Dirichlet wall particle w:
+//   T_a - T_w  is clamped to lie between 0 and R (T_a - T_D),   R = kMirrorLimit,
+// which leaves smooth profiles alone (there T_a - T_w is about (1 + 2 y~/y_a)(T_a - T_D),
+// 2 to 4 times T_a - T_D for the first fluid rows with y~ the mean distance of T~'s
+// particles from the surface) and makes the wall term pull T_a towards T_D only, never past
+// it. With it the update is a convex combination of T_a, its neighbours' values and the
+// walls' T_D whenever dt sum_b c_ab (R for wall pairs) <= 1, so values stay within the
+// initial and prescribed bounds (a discrete maximum principle) at the steps eq. (41) gives.
+//
 // Latent heat (Fuchs 2021 Remark 3; Proell, Wall, Meier 2020): the apparent-capacity scheme
 // raises c_p by L/dT inside the melting interval [T_lo, T_hi]. Integrated as written, an
 // explicit step can jump across a narrow interval and skip the latent heat. The update is
@@ -61,6 +74,9 @@ struct DiffusionMaterial {
   }
 };
 
+// The largest ratio (T_a - T_w)/(T_a - T_D) a wall pair may carry (see above).
+inline constexpr double kMirrorLimit = 3.0;
+
 template <int D, class K>
 class ScalarDiffusion {
  public:
@@ -77,7 +93,8 @@ class ScalarDiffusion {
         walls_(std::move(wall_values)),
         wall_material_(std::move(wall_material)),
         wall_volume_(wall_volume),
-        source_(source_per_volume) {}
+        source_(source_per_volume),
+        targets_(walls_.size(), 0.0) {}
 
   Column<double>& values() { return value_; }
   const std::string& name() const { return value_.name(); }
@@ -99,6 +116,8 @@ class ScalarDiffusion {
   // neighbours; the caller then refreshes the ghosts of values().
   void extrapolate_walls(const NeighborList<D>& nl, double t,
                          const Column<std::uint16_t>& wall_index) {
+    for (std::size_t k = 0; k < walls_.size(); ++k)
+      if (walls_[k]) targets_[k] = walls_[k]->value(t);
     for (std::size_t w = 0; w < s_.owned(); ++w) {
       if (s_.kind[w] != Kind::kWall) continue;
       const auto& f = walls_[wall_index[w]];
@@ -109,7 +128,7 @@ class ScalarDiffusion {
         sw += W;
         sv += W * value_[*bp];
       }
-      const double target = f->value(t);
+      const double target = targets_[wall_index[w]];
       value_[w] = sw > 0 ? 2.0 * target - sv / sw : target;
     }
   }
@@ -133,7 +152,7 @@ class ScalarDiffusion {
       double sum = 0;
       for (const std::uint32_t* bp = nl.begin(a); bp != nl.end(a); ++bp) {
         const std::uint32_t b = *bp;
-        double kb, vb;
+        double kb, vb, diff = value_[a] - value_[b];
         if (s_.kind[b] == Kind::kWall) {
           const std::uint16_t w = wall_index[b];
           if (!walls_[w]) continue;  // insulated
@@ -141,6 +160,8 @@ class ScalarDiffusion {
                    ? mats_[static_cast<std::size_t>(wall_material_[w])].coefficient
                    : ma.coefficient;
           vb = wall_volume_;
+          const double towards = kMirrorLimit * (value_[a] - targets_[w]);
+          diff = std::clamp(diff, std::min(0.0, towards), std::max(0.0, towards));
         } else {
           const DiffusionMaterial& mb = mats_[s_.material[b]];
           kb = mb.coefficient;
@@ -151,7 +172,7 @@ class ScalarDiffusion {
         const Vec<D> rab = s_.x[a] - s_.x[b];
         const double r = rab.norm();
         if (r == 0) continue;
-        sum += vb * 4.0 * ma.coefficient * kb / ks * (value_[a] - value_[b]) / r * k_.dW(r);
+        sum += vb * 4.0 * ma.coefficient * kb / ks * diff / r * k_.dW(r);
       }
       rate_[a] = (sum + source_) / rho_a;  // power per unit mass
     }
@@ -171,6 +192,7 @@ class ScalarDiffusion {
   std::vector<std::optional<TimeFunction>> walls_;
   std::vector<int> wall_material_;
   double wall_volume_, source_;
+  std::vector<double> targets_;  // T_D of each Dirichlet wall at the current step
   std::vector<double> rate_;
 };
 

@@ -22,8 +22,8 @@ python=${SPHD_PYTHON:-/usr/bin/python3}
 # name | case | ladder (sph-worker flags). Coarsest level first; cheap studies first.
 studies=(
   "conduction|cases/conduction_slab_2d.textproto|--study-refine 7"
-  "poiseuille|cases/studies/poiseuille_2d.textproto|--study-refine 6"
-  "couette|cases/studies/couette_2d.textproto|--study-refine 6"
+  "poiseuille|cases/studies/poiseuille_2d.textproto|--study-refine 7"
+  "couette|cases/studies/couette_2d.textproto|--study-refine 7"
   "taylor_green|cases/taylor_green_2d.textproto|--study-dx 0.05,0.0354,0.025,0.0177,0.0125"
   "hydrostatic|cases/hydrostatic_tank_2d.textproto|--study-dx 0.05,0.0333,0.025,0.0167"
   "cooled_block|cases/cooled_block_channel_2d.textproto|--study-refine 4"
@@ -78,6 +78,7 @@ for entry in "${studies[@]}"; do
   if ! "$worker" --case "$root/$case" --out "$dir" $flags --quiet 2>&1 | tee "$dir.log"; then
     echo "   $name: the study did not complete (see $dir.log)"
   fi
+  git -C "$root" describe --always --dirty >"$dir/code_version"
   echo "   $name took $(( $(date +%s) - start )) s"
 done
 
