@@ -118,8 +118,12 @@ class Simulation {
   Column<std::uint16_t> no_walls_{"wall_index", "walls", false};
   void sample_bodies();
   void integrate_step(double dt);
-  // Contact sub-steps the coming step of length dt needs (1 when bodies cannot touch).
+  // Contact sub-steps the coming step of length dt needs (1 when bodies cannot touch); step()
+  // keeps it in substeps_ for move_bodies.
   int contact_substeps(double dt) const;
+  int substeps_ = 1;
+  // The largest solid fraction of a fluid particle's support on this rank (the guard's scan).
+  SolidFractionScan scan_solid_fraction();
   struct EndOfStep {
     double max_speed = 0, max_acceleration = 0, max_density_dev = 0, min_contact_distance = 0;
     bool violated = false, cancel = false, interrupt = false, checkpoint = false,

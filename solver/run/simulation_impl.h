@@ -623,7 +623,7 @@ void Simulation<D, K>::move_bodies(double dt) {
   if (contact_) {
     Timer tc(timer(SpringDashpotContact<D>::kName));
     // Substep only when bodies may touch during this step; otherwise one drift.
-    contact_->drift(nl_, dt, contact_substeps(dt), t_ + dt, comm_);
+    contact_->drift(nl_, dt, substeps_, t_ + dt, comm_);
   } else {
     bodies_->drift(dt, t_ + dt);
   }
@@ -717,9 +717,7 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
   }
   SolidFractionScan solid;
   if (walls_) {
-    solid = solid_fraction<D, K>(s_, nl_, kernel_, wall_volume_,
-                                 wall_index_ ? wall_index_->data() : nullptr,
-                                 bodies_ ? bodies_->body_index().data() : nullptr);
+    solid = scan_solid_fraction();
     if (scan.violation.empty() && solid.max > guards_.max_solid_fraction) {
       char buf[160];
       std::snprintf(buf, sizeof buf,
@@ -1062,12 +1060,7 @@ void Simulation<D, K>::start() {
                 : bound_->dt(comm_.max(scan.max_speed), comm_.max(scan.max_acceleration));
       dt0_ = dt_;
     }
-    if (walls_)
-      solid_fraction_ =
-          comm_.max(solid_fraction<D, K>(s_, nl_, kernel_, wall_volume_,
-                                         wall_index_ ? wall_index_->data() : nullptr,
-                                         bodies_ ? bodies_->body_index().data() : nullptr)
-                        .max);
+    if (walls_) solid_fraction_ = comm_.max(scan_solid_fraction().max);
     if (contact_) min_contact_distance_ = comm_.min(nl_.min_contact_distance());
     result_.create(metadata("running"));
     maybe_rebalance();
@@ -1098,6 +1091,13 @@ void Simulation<D, K>::start() {
 }
 
 template <int D, class K>
+SolidFractionScan Simulation<D, K>::scan_solid_fraction() {
+  return solid_fraction<D, K>(s_, nl_, kernel_, wall_volume_,
+                              wall_index_ ? wall_index_->data() : nullptr,
+                              bodies_ ? bodies_->body_index().data() : nullptr);
+}
+
+template <int D, class K>
 int Simulation<D, K>::contact_substeps(double dt) const {
   if (!contact_ || !contact_possible_) return 1;
   const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
@@ -1109,7 +1109,8 @@ template <int D, class K>
 typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
   const double dt = schedule_.clip(t_, dt_, next_output_);
   // Checked before the step, so the state that stops the run is still the last good one.
-  if (const int n = contact_substeps(dt); n > guards_.max_contact_substeps) {
+  substeps_ = contact_substeps(dt);  // move_bodies uses it
+  if (const int n = substeps_; n > guards_.max_contact_substeps) {
     StepReport rep;
     rep.violated = true;
     char buf[320];
