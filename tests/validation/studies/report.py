@@ -64,11 +64,16 @@ layer is not uniform along the bottom: at dx = 0.025 it is 0.68% high in the mid
 -0.02% at the corners; the difference between the middle and the corners grows from 0 at
 t = 3 to 1.0% at t = 6.6 and is back to 0.4% at t = 10, while the free surface stays flat to
 0.4 mm (0.016 dx). The first fluid rows alternate (+0.47%, -0.77%, +0.13%, -0.50% of rho g H
-at dx = 0.025). So what does not converge is a slow rearrangement of the particle layers next
-to the bottom wall (seconds, not an acoustic or gravity wave), which the study catches in the
-middle of its evolution; it needs a longer settling run and a look at the near-wall layering
-of the wall condition before this study can show an order. All three targets need only
-dx = 0.05, 18 particles over the depth.
+at dx = 0.025). Run on to t = 40, the same happens at dx = 0.05 later (middle 1.0% above the
+corners at t = 18, 0.14% at t = 40), while at dx = 0.025 the difference stays at 0.95% from
+t = 24 to 40; the mean error over 30 <= t <= 40 is 0.26% at dx = 0.05 and 0.63% at 0.025.
+At t = 40 the particles in the middle of the bottom are disordered (mean nearest-neighbour
+distance 0.92 dx) and those near the side walls still close to the initial lattice (0.95 dx),
+at the same mean density. So what does not converge is the wall pressure's dependence on the
+local particle arrangement: the initial Cartesian lattice breaks up under the hydrostatic
+load, from the middle outwards, at a time and to an extent that depend on the resolution.
+A study that shows an order needs a settled (relaxed) initial particle distribution; that is
+the next step. All three targets need only dx = 0.05, 18 particles over the depth.
 """,
     "cooled_block": """
 The multi-physics case: fluid flow around a rigid body, heat conduction in two materials and
