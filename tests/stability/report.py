@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes docs/stability.md from a log of the stability suite (tests/stability/run.sh) and the
+"""Writes docs/stability.md (or stability-full.md) from a log of the stability suite (tests/stability/run.sh) and the
 results the hard cases left under the build's test-output/: per case the verdict, what it
 asserted and measured (printed by the test), its figures over time, and a plot of density
 deviation, mechanical energy and mass drift against time.
@@ -38,11 +38,16 @@ for line in log:
         current["lines"].append(line)
 
 suite_wall = next((l for l in log if l.startswith("suite wall time")), "")
+# run.sh records the code version in the log ("code version: X"); a suite run split over
+# several processes may carry several.
+versions = [l.split(":", 1)[1].strip() for l in log if l.startswith("code version:")]
 try:
     rev = subprocess.check_output(["git", "rev-parse", "--short", "HEAD"],
                                   cwd=os.path.dirname(os.path.abspath(__file__))).decode().strip()
 except Exception:  # not a checkout
     rev = "unknown"
+if versions:
+    rev = " and ".join(dict.fromkeys(versions))
 
 os.makedirs(image_dir, exist_ok=True)
 
@@ -85,7 +90,9 @@ out.append("# Stability suite\n")
 out.append("Written by `tests/stability/run.sh%s` (runs the suite, then `tests/stability/report.py`); "
            "do not edit by hand. Code version %s; %s. This page: the **%s** size%s.\n"
            % (" --full" if size == "full" else "", rev, suite_wall or "suite wall time not recorded",
-              size, " (ctest's; `run.sh --full` runs the case files as shipped)" if size == "reduced" else ""))
+              size, " (ctest's; `run.sh --full` runs the case files as shipped: "
+              "[stability-full.md](stability-full.md))" if size == "reduced" else
+              " (the case files as shipped; the reduced CI size: [stability.md](stability.md))"))
 out.append("Each hard case runs long and asserts: every diagnostic finite, the run completes, density "
            "deviation bounded, no fluid inside walls or bodies (solid-fraction guard), no spurious growth "
            "of mechanical energy, mass exact (and momentum where it must hold). Each guard has a run that "
