@@ -31,8 +31,8 @@ render=$root/tests/validation/phase/render.py
 /usr/bin/python3 "$render" "$out/gastric_04/result.h5" "$reports" gastric_dx04
 /usr/bin/python3 "$render" "$out/powder_2d_coarse/result.h5" "$reports" powder_grains_2d_coarse \
   --scalar temperature --speed-max 800 --labels grain,melt,gas --frames 8
-/usr/bin/python3 "$render" "$out/powder_3d_coarse/result.h5" "$reports" powder_melting_3d_coarse_top \
+/usr/bin/python3 "$render" "$out/powder_3d_coarse/result.h5" "$reports" powder_melting_3d_coarse_xy \
   --scalar temperature --labels grain,melt,gas --frames 6 --plane xy
-/usr/bin/python3 "$render" "$out/powder_3d_coarse/result.h5" "$reports" powder_melting_3d_coarse_side \
+/usr/bin/python3 "$render" "$out/powder_3d_coarse/result.h5" "$reports" powder_melting_3d_coarse_xz \
   --scalar temperature --labels grain,melt,gas --frames 6 --plane xz
 /usr/bin/python3 "$root/tests/validation/phase/scene_figures.py" "$out"
