@@ -23,7 +23,6 @@ class TimeStepBound {
   void add_limit(double dt) {
     if (dt > 0) constant_ = std::min(constant_, dt);
   }
-  // dt for the current largest speed.
   // dt for the current largest speed and largest particle acceleration. Eq. 41 bounds the
   // body force, 0.25 sqrt(h/|b|); the same bound with the largest particle acceleration
   // (Monaghan 1992 uses |f_i|) also catches a particle squeezed between a body and a wall,

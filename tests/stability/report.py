@@ -85,6 +85,22 @@ def plot_case(case, png):
     return True
 
 
+# What the series of a run shows beyond the verdict (analysed from the test's result file,
+# build/test-output/stability_<case>/result.h5), per page size and test.
+FINDINGS = {
+    ("full", "Stability.GastricConstrictionJet"):
+        "The bound is exceeded in 2 of the 191 samples after t = 0.05: 0.2020 at t = 0.400 and "
+        "0.2034 at t = 0.575 (the next samples 0.169 and 0.096; mass exact, no guard tripped, the "
+        "run completes). Both come while a bolus touches another bolus or the constriction: the "
+        "smallest distance between rigid particles of different bodies or a body and a wall "
+        "(`diagnostics/min_contact_distance`) is 0.1993 and 0.1986 (dx = 0.2) at those samples, and 6 "
+        "of the 7 samples above 0.15 have it below 0.21: the fluid between the two solids is "
+        "squeezed out of a gap narrower than one particle (that the largest deviation sits in "
+        "that gap is inferred from the timing, not yet located particle by particle). The bound "
+        "is left at 0.2; resolving the gap (dx 0.1, the paper's) or a contact distance that "
+        "keeps a particle's width between solids are the candidates, neither tried yet.",
+}
+
 out = []
 out.append("# Stability suite\n")
 out.append("Written by `tests/stability/run.sh%s` (runs the suite, then `tests/stability/report.py`); "
@@ -115,6 +131,8 @@ for b in blocks:
         png = "%s_%s.png" % (m.group(1), size)
         if plot_case(m.group(1), os.path.join(image_dir, png)):
             out.append("![%s](stability/%s)\n" % (m.group(1), png))
+    if (size, b["name"]) in FINDINGS:
+        out.append(FINDINGS[(size, b["name"])] + "\n")
 guards = [b for b in blocks if b["name"].startswith("GuardsTrip.")]
 if guards:
     out.append("## Guards tripped by real runs\n")
