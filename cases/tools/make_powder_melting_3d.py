@@ -97,31 +97,39 @@ output { interval: 1.25e-5 series_interval: 1e-6 }
 
 K_C, D_C = "1", "1e-4"  # contact stiffness [kg/s^2] (paper) and damping [kg/s] ([D], see the header)
 
-WALL_TEMPERATURE = "temperature { value { piecewise_constant { times: [0, 1.5e-4] values: [1800, 500] } } }"
+
+
+def preamble(name, what, dim, dx, domain):
+    """Name, description, dimension, dx [um], domain and the materials."""
+    return ('name: "%s"\ndescription: "Steel powder grains melting at hot walls in gas and '
+            're-solidifying %s"\ndimension: %d\ndx: %g\ndomain { %s }\n%s'
+            % (name, what, dim, dx * UM, domain, MATERIALS))
+
+
+def gas_and_walls(lo, hi):
+    """The gas filling the box lo-hi and the box's walls with the paper's temperature schedule."""
+    box = "box { lo { %s } hi { %s } }" % (lo, hi)
+    return """fluids {
+  name: "gas"
+  material: "gas"
+  shape { %s }
+  initial_temperature: 500
+}
+walls {
+  name: "box"
+  shape { shell { inner { %s } } }
+  temperature { value { piecewise_constant { times: [0, 1.5e-4] values: [1800, 500] } } }
+}
+""" % (box, box)
 
 
 def write(path, name, dx, note):
     with open(path, "w") as f:
         f.write(HEADER % N_GRAINS)
         f.write(note)
-        f.write('name: "%s"\n' % name)
-        f.write('description: "Steel powder grains melting at hot walls in gas and re-solidifying '
-                'after the walls cool (3D, SI)"\n')
-        f.write("dimension: 3\ndx: %g\n" % (dx * UM))
-        f.write("domain { lo { x: -8e-6 y: -8e-6 z: -8e-6 } hi { x: 58e-6 y: 58e-6 z: 38e-6 } }\n")
-        f.write(MATERIALS)
-        f.write("""fluids {
-  name: "gas"
-  material: "gas"
-  shape { box { lo { x: 0 y: 0 z: 0 } hi { x: 50e-6 y: 50e-6 z: 30e-6 } } }
-  initial_temperature: 500
-}
-walls {
-  name: "box"
-  shape { shell { inner { box { lo { x: 0 y: 0 z: 0 } hi { x: 50e-6 y: 50e-6 z: 30e-6 } } } } }
-  %s
-}
-""" % WALL_TEMPERATURE)
+        f.write(preamble(name, "after the walls cool (3D, SI)", 3, dx,
+                         "lo { x: -8e-6 y: -8e-6 z: -8e-6 } hi { x: 58e-6 y: 58e-6 z: 38e-6 }"))
+        f.write(gas_and_walls("x: 0 y: 0 z: 0", "x: 50e-6 y: 50e-6 z: 30e-6"))
         for k, (c, r) in enumerate(grains):
             f.write('bodies { name: "grain_%d" material: "solid_steel" initial_temperature: 500 '
                     "shape { ball { center { x: %.6e y: %.6e z: %.6e } radius: %.6e } } }\n"
@@ -146,24 +154,9 @@ def write_slice(path, dx):
                 "# 3D values unscaled a grain in 2D is 1e6 times too soft and a re-solidified piece\n"
                 "# moving at 1 m/s sinks through the wall. Gravity moves a grain by 0.15 um in 0.175 ms.\n"
                 % (ys, len(disks), K_C, D_C))
-        f.write('name: "powder_melting_slice_2d"\n')
-        f.write('description: "Steel powder grains melting at hot walls in gas and re-solidifying '
-                '(2D slice of the 3D box, SI)"\n')
-        f.write("dimension: 2\ndx: %g\n" % (dx * UM))
-        f.write("domain { lo { x: -4e-6 y: -4e-6 } hi { x: 54e-6 y: 34e-6 } }\n")
-        f.write(MATERIALS)
-        f.write("""fluids {
-  name: "gas"
-  material: "gas"
-  shape { box { lo { x: 0 y: 0 } hi { x: 50e-6 y: 30e-6 } } }
-  initial_temperature: 500
-}
-walls {
-  name: "box"
-  shape { shell { inner { box { lo { x: 0 y: 0 } hi { x: 50e-6 y: 30e-6 } } } } }
-  %s
-}
-""" % WALL_TEMPERATURE)
+        f.write(preamble("powder_melting_slice_2d", "(2D slice of the 3D box, SI)", 2, dx,
+                         "lo { x: -4e-6 y: -4e-6 } hi { x: 54e-6 y: 34e-6 }"))
+        f.write(gas_and_walls("x: 0 y: 0", "x: 50e-6 y: 30e-6"))
         for k, (x, y, r) in enumerate(disks):
             f.write('bodies { name: "grain_%d" material: "solid_steel" initial_temperature: 500 '
                     "shape { ball { center { x: %.6e y: %.6e } radius: %.6e } } }\n"
