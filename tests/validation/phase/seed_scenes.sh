@@ -3,7 +3,8 @@
 # renders frames and invariants for tests/validation/reports/seed_scenes.md:
 #   tests/validation/phase/seed_scenes.sh [BUILD_DIR] [OUT_DIR]
 # The 2D powder grains (dx 0.25, 157k steps) take about 40 min on one core, the 3D powder
-# melting (dx 2.5 um, 103k steps) about 100 min, the gastric boluses (dx 0.4) under 2 min.
+# melting (dx 2.5 um, 104k steps) about 100 min (75 min on two ranks), its 2D slice at the
+# paper's dx = 1 um (261k steps) about 19 min, the gastric boluses (dx 0.4) under 2 min.
 # A finished run is kept (delete its folder to redo it). SPHD_RANKS sets the ranks (default 1).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
@@ -27,6 +28,7 @@ run() {  # name case-file [sed expression]
 run gastric_04 "$root/cases/gastric_boluses_2d.textproto" 's/^dx: 0.2$/dx: 0.4/'
 run powder_2d_coarse "$root/cases/powder_grains_2d_coarse.textproto"
 run powder_3d_coarse "$root/cases/powder_melting_3d_coarse.textproto"
+run powder_slice_2d "$root/cases/powder_melting_slice_2d.textproto"
 render=$root/tests/validation/phase/render.py
 /usr/bin/python3 "$render" "$out/gastric_04/result.h5" "$reports" gastric_dx04
 /usr/bin/python3 "$render" "$out/powder_2d_coarse/result.h5" "$reports" powder_grains_2d_coarse \
@@ -35,4 +37,6 @@ render=$root/tests/validation/phase/render.py
   --scalar temperature --labels grain,melt,gas --frames 6 --plane xy
 /usr/bin/python3 "$render" "$out/powder_3d_coarse/result.h5" "$reports" powder_melting_3d_coarse_xz \
   --scalar temperature --labels grain,melt,gas --frames 6 --plane xz
+/usr/bin/python3 "$render" "$out/powder_slice_2d/result.h5" "$reports" powder_melting_slice_2d \
+  --scalar temperature --speed-max 5 --labels grain,melt,gas --frames 8
 /usr/bin/python3 "$root/tests/validation/phase/scene_figures.py" "$out"
