@@ -86,7 +86,8 @@ def plot_case(case, png):
 
 
 # What the series of a run shows beyond the verdict (analysed from the test's result file,
-# build/test-output/stability_<case>/result.h5), per page size and test.
+# build/test-output/stability_<case>/result.h5), per page size and test. The numbers belong to
+# the run the page was made from (code a650868 for the full page); a new run must re-check them.
 FINDINGS = {
     ("full", "Stability.GastricConstrictionJet"):
         "The bound is exceeded in 2 of the 191 samples after t = 0.05: 0.2020 at t = 0.400 and "

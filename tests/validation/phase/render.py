@@ -3,11 +3,13 @@
 
     python3 render.py RESULT.h5 OUT_DIR [NAME] [--scalar temperature|concentration]
         [--speed-max V] [--labels SOLID,MELT,FLUID] [--frames N] [--plane xy|xz]
+        [--frames-only]
 
 Rigid (solid) particles black, melted particles (the second material) red, the first fluid
 coloured by speed, walls light grey. A 3D result is drawn as a projection on --plane
 (default xy, seen from above) of the solid and melted particles only. Writes NAME_frames.png and NAME_invariants.png (solid
-mass and number of bodies over time; the scalar's range against its bounds)."""
+mass and number of bodies over time; the scalar's range against its bounds) unless
+--frames-only (a second projection of the same run has the same invariants)."""
 import argparse
 import os
 
@@ -27,6 +29,7 @@ ap.add_argument("--speed-max", type=float, default=100)
 ap.add_argument("--labels", default="bolus,chyme,gastric juice")
 ap.add_argument("--frames", type=int, default=6)
 ap.add_argument("--plane", default="xy")
+ap.add_argument("--frames-only", action="store_true")
 a = ap.parse_args()
 solid_label, melt_label, fluid_label = a.labels.split(",")
 
@@ -68,9 +71,13 @@ for ax, k in zip(np.ravel(axes), pick):
     ax.set_aspect("equal")
     ax.set_xticks([])
     ax.set_yticks([])
-fig.colorbar(sc, ax=np.ravel(axes).tolist(), shrink=0.6, label="speed of the " + fluid_label)
+if not three_d:  # the projection leaves the carrier fluid out
+    fig.colorbar(sc, ax=np.ravel(axes).tolist(), shrink=0.6, label="speed of the " + fluid_label)
 os.makedirs(a.out, exist_ok=True)
 fig.savefig(os.path.join(a.out, a.name + "_frames.png"), dpi=90)
+print("wrote", os.path.join(a.out, a.name + "_frames.png"))
+if a.frames_only:
+    raise SystemExit(0)
 
 ph = f["series/phase"]
 t = f["series/bodies/time"][:]
@@ -87,4 +94,4 @@ ax[1].set_xlabel("t")
 ax[1].legend()
 fig.tight_layout()
 fig.savefig(os.path.join(a.out, a.name + "_invariants.png"), dpi=90)
-print("wrote", os.path.join(a.out, a.name + "_frames.png"), os.path.join(a.out, a.name + "_invariants.png"))
+print("wrote", os.path.join(a.out, a.name + "_invariants.png"))

@@ -34,7 +34,7 @@ render=$root/tests/validation/phase/render.py
 /usr/bin/python3 "$render" "$out/powder_2d_coarse/result.h5" "$reports" powder_grains_2d_coarse \
   --scalar temperature --speed-max 800 --labels grain,melt,gas --frames 8
 /usr/bin/python3 "$render" "$out/powder_3d_coarse/result.h5" "$reports" powder_melting_3d_coarse_xy \
-  --scalar temperature --labels grain,melt,gas --frames 6 --plane xy
+  --scalar temperature --labels grain,melt,gas --frames 6 --plane xy --frames-only
 /usr/bin/python3 "$render" "$out/powder_3d_coarse/result.h5" "$reports" powder_melting_3d_coarse_xz \
   --scalar temperature --labels grain,melt,gas --frames 6 --plane xz
 /usr/bin/python3 "$render" "$out/powder_slice_2d/result.h5" "$reports" powder_melting_slice_2d \
