@@ -98,7 +98,6 @@ output { interval: 1.25e-5 series_interval: 1e-6 }
 K_C, D_C = "1", "1e-4"  # contact stiffness [kg/s^2] (paper) and damping [kg/s] ([D], see the header)
 
 
-
 def preamble(name, what, dim, dx, domain):
     """Name, description, dimension, dx [um], domain and the materials."""
     return ('name: "%s"\ndescription: "Steel powder grains melting at hot walls in gas and '
