@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 
 namespace sph {
 
@@ -57,13 +58,16 @@ bool ResultFile::carry_over(const std::string& previous, double t,
       if (!same) ok = fs::copy_file(previous, h5_, fs::copy_options::overwrite_existing, ec) && !ec;
     }
   }
-  MPI_Bcast(&ok, 1, MPI_INT, 0, comm_.raw());
-  if (ok) {
+  // The surgery on the copied file (deleting what came after t) is done by the root alone:
+  // on several ranks every metadata change must be collective and identical, and the
+  // deletions and shrinks here deadlocked 4 ranks in H5Fclose.
+  std::vector<double> kept_time;
+  std::vector<std::uint64_t> kept_count;
+  if (comm_.root() && ok) {
     try {
-      h5::Handle f = h5::open_file(h5_, comm_.raw(), false);
+      h5::Handle f = h5::open_file(h5_, MPI_COMM_SELF, false);
       const double eps = 1e-12 * std::max(1.0, std::abs(t));
       // Snapshots after t belong to the lost part of the earlier attempt.
-      std::vector<SnapshotEntry> kept;
       for (int k = 0;; ++k) {
         char name[32];
         std::snprintf(name, sizeof name, "/snapshots/%06d", k);
@@ -75,27 +79,54 @@ bool ResultFile::carry_over(const std::string& previous, double t,
           g.reset();
           h5::check(H5Ldelete(f, name, H5P_DEFAULT), std::string("delete ") + name);
         } else {
-          kept.push_back({name, ts, count});
+          kept_time.push_back(ts);
+          kept_count.push_back(count);
         }
       }
+      // Rows sampled after t go too. A series keeps as many rows as its group's time column
+      // has up to t (groups without one, like the phase counters, are sampled with the
+      // diagnostics); every count is read before anything is truncated, so no series is cut
+      // by a time column that was already cut.
+      std::map<std::string, std::uint64_t> keep;  // time column -> rows up to t
+      auto clock_of = [&](const std::string& full) {
+        const std::string own = full.substr(0, full.rfind('/')) + "/time";
+        return h5::exists(f, own) ? own : std::string("/series/diagnostics/time");
+      };
       for (const auto& [name, s] : series_) {
-        const std::string full = "/series/" + name;
-        const std::string group = full.substr(0, full.rfind('/'));
-        if (!h5::exists(f, full) || !h5::exists(f, group + "/time")) {
-          h5::append_rows(f, full, s.row, {}, 0, comm_.root());
+        const std::string clock = clock_of("/series/" + name);
+        if (keep.count(clock) || !h5::exists(f, clock)) continue;
+        const auto times = h5::read_vector(f, clock);
+        std::uint64_t n = 0;
+        while (n < times.size() && times[n] <= t + eps) ++n;
+        keep[clock] = n;
+      }
+      for (const auto& [name, s] : series_) {
+        const std::string full = "/series/" + name, clock = clock_of(full);
+        if (!h5::exists(f, full) || !keep.count(clock)) {
+          h5::append_rows(f, full, s.row, {}, 0, true);
           continue;
         }
-        const auto times = h5::read_vector(f, group + "/time");
-        std::uint64_t keep = 0;
-        while (keep < times.size() && times[keep] <= t + eps) ++keep;
-        h5::truncate_rows(f, full, keep);
+        h5::truncate_rows(f, full, keep.at(clock));
       }
       h5::Handle g = h5::open_or_create_group(f, "/meta");
       for (const auto& [k, v] : meta) h5::write_attribute(g, k, v);
-      snapshots_ = kept;
     } catch (const h5::Error&) {
       ok = 0;
     }
+  }
+  MPI_Bcast(&ok, 1, MPI_INT, 0, comm_.raw());
+  // Every rank learns the kept snapshots (a prefix: snapshot times increase).
+  std::uint64_t n = kept_time.size();
+  MPI_Bcast(&n, 1, MPI_UINT64_T, 0, comm_.raw());
+  kept_time.resize(n);
+  kept_count.resize(n);
+  MPI_Bcast(kept_time.data(), static_cast<int>(n), MPI_DOUBLE, 0, comm_.raw());
+  MPI_Bcast(kept_count.data(), static_cast<int>(n), MPI_UINT64_T, 0, comm_.raw());
+  snapshots_.clear();
+  for (std::uint64_t k = 0; k < n; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "/snapshots/%06d", static_cast<int>(k));
+    snapshots_.push_back({name, kept_time[k], kept_count[k]});
   }
   int all = 0;
   MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, comm_.raw());

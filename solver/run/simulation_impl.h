@@ -190,6 +190,7 @@ void Simulation<D, K>::build_units() {
                         "max_density_deviation", "max_speed", "imbalance", "fluid_particles"})
     result_.add_series(std::string("diagnostics/") + n);
   result_.add_series("diagnostics/momentum", {static_cast<std::uint64_t>(D)});
+  result_.add_series("diagnostics/max_density_deviation_at", {static_cast<std::uint64_t>(D)});
   // Bounding box of the fluid (e.g. the surge front of a dam break).
   result_.add_series("diagnostics/fluid_min", {static_cast<std::uint64_t>(D)});
   result_.add_series("diagnostics/fluid_max", {static_cast<std::uint64_t>(D)});
@@ -770,9 +771,13 @@ void Simulation<D, K>::sample_series() {
   // One reduction for the extremes: [dev, vmax, -min_0.., max_0..].
   std::vector<double> ext(2 + 2 * D, -std::numeric_limits<double>::infinity());
   ext[0] = ext[1] = 0.0;
+  std::size_t worst = s_.owned();  // the owned fluid particle of the largest deviation
   for (std::size_t i = 0; i < s_.owned(); ++i) {
     if (s_.kind[i] != Kind::kFluid) continue;
-    ext[0] = std::max(ext[0], std::abs(s_.rho[i] * fluids_[s_.material[i]].inv_rho0 - 1.0));
+    const double dev_i = std::abs(s_.rho[i] * fluids_[s_.material[i]].inv_rho0 - 1.0);
+    if (worst == s_.owned() || dev_i > ext[0] || (dev_i == ext[0] && s_.id[i] < s_.id[worst]))
+      worst = i;
+    ext[0] = std::max(ext[0], dev_i);
     ext[1] = std::max(ext[1], s_.v[i].norm());
     for (int a = 0; a < D; ++a) {
       ext[2 + static_cast<size_t>(a)] = std::max(ext[2 + static_cast<size_t>(a)], -s_.x[i][a]);
@@ -780,8 +785,20 @@ void Simulation<D, K>::sample_series() {
           std::max(ext[2 + D + static_cast<size_t>(a)], s_.x[i][a]);
     }
   }
+  const double local_dev = ext[0];
   comm_.max_inplace(ext);
   const double dev = ext[0], vmax = ext[1];
+  // Where the largest deviation sits (a particle squeezed in a closing gap, the start of a
+  // blow-up); ties go to the smallest global id, so the answer is the same for any rank count.
+  const double inf = std::numeric_limits<double>::infinity();
+  const double my_id =
+      worst < s_.owned() && local_dev == dev ? static_cast<double>(s_.id[worst]) : inf;
+  const double worst_id = comm_.min(my_id);
+  std::vector<double> worst_at(D, -inf);
+  if (my_id == worst_id && my_id < inf)
+    for (int a = 0; a < D; ++a) worst_at[static_cast<size_t>(a)] = s_.x[worst][a];
+  comm_.max_inplace(worst_at);
+  if (worst_id == inf) worst_at.assign(D, std::numeric_limits<double>::quiet_NaN());
   std::vector<double> fmin(D), fmax(D);
   for (int a = 0; a < D; ++a) {
     fmin[static_cast<size_t>(a)] = -ext[2 + static_cast<size_t>(a)];
@@ -799,6 +816,7 @@ void Simulation<D, K>::sample_series() {
   put("kinetic_energy", cs.kinetic);
   put("potential_energy", cs.potential);
   put("max_density_deviation", dev);
+  result_.append_series("diagnostics/max_density_deviation_at", worst_at);
   put("max_speed", vmax);
   put("imbalance", imbalance_);
   put("fluid_particles", cs.fluid_particles);
@@ -1080,7 +1098,13 @@ void Simulation<D, K>::start() {
     if (contact_) contact_->load(state);  // every rank reads all pairs ...
     decompose_by_histogram();
     migrate();
-    if (contact_) contact_->prune_history();  // ... and keeps those of its particles
+    if (contact_) {
+      contact_->prune_history();  // ... and keeps those of its particles
+      // The first step's contact drift reads the neighbour list of the checkpointed positions
+      // (an uninterrupted run has it from the previous step).
+      exchange_and_search();
+      min_contact_distance_ = comm_.min(nl_.min_contact_distance());
+    }
     global_particles_ = comm_.sum(static_cast<std::int64_t>(s_.owned()));
     auto meta = metadata("running");
     meta["resumed_from"] = opt_.resume_from;

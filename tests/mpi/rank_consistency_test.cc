@@ -77,9 +77,35 @@ double max_relative_difference(const Fields& a, const Fields& b) {
   return worst;
 }
 
+// Where the last series sample puts the largest density deviation; checks that it is the
+// fluid particle of the largest |rho/rho0 - 1| in the last snapshot (the same step).
+std::vector<double> check_worst_density_location(const std::string& path, double rho0) {
+  test::ResultReader rr(path);
+  const test::Snapshot s = rr.last();
+  const auto t = rr.series("diagnostics/time");
+  const auto dev = rr.series("diagnostics/max_density_deviation");
+  const auto at = rr.series("diagnostics/max_density_deviation_at");
+  const std::size_t d = at.size() / t.size();
+  EXPECT_EQ(t.back(), s.time) << path;
+  std::size_t worst = s.size();
+  for (std::size_t i = 0; i < s.size(); ++i)
+    if (s.kind[i] == 0 && (worst == s.size() || std::abs(s.density[i] / rho0 - 1) >
+                                                    std::abs(s.density[worst] / rho0 - 1)))
+      worst = i;
+  EXPECT_LT(worst, s.size()) << path;
+  if (worst == s.size()) return {};
+  EXPECT_NEAR(dev.back(), std::abs(s.density[worst] / rho0 - 1), 1e-12) << path;
+  std::vector<double> last(at.end() - static_cast<std::ptrdiff_t>(d), at.end());
+  for (std::size_t a = 0; a < d; ++a)
+    EXPECT_EQ(last[a], s.position[3 * worst + a]) << path << " axis " << a;
+  return last;
+}
+
 void check_rank_counts(const std::string& name, v1::Case c, std::int64_t steps) {
   c.mutable_time()->set_max_steps(steps);
   c.mutable_output()->set_interval(0);  // snapshots at t = 0 and at the end only
+  // Series every step, so that the last sample is the state of the last snapshot.
+  c.mutable_output()->set_series_interval(1e-12);
   std::map<int, std::string> outs;
   for (int ranks : {1, 2, 4}) {
     outs[ranks] =
@@ -102,6 +128,13 @@ void check_rank_counts(const std::string& name, v1::Case c, std::int64_t steps) 
   EXPECT_LE(d2, 1e-10);
   EXPECT_LE(d4, 1e-10);
   EXPECT_EQ(rep, 0.0);
+  double rho0 = 0;
+  for (const auto& m : c.materials())
+    if (m.name() == c.fluids(0).material()) rho0 = m.density();
+  const auto at1 = check_worst_density_location(outs[1] + "/result.h5", rho0);
+  const auto at4 = check_worst_density_location(outs[4] + "/result.h5", rho0);
+  ASSERT_EQ(at1.size(), at4.size());
+  for (std::size_t a = 0; a < at1.size(); ++a) EXPECT_NEAR(at1[a], at4[a], 1e-9) << name;
 }
 
 TEST(RankConsistency, DamBreak2D) {
@@ -247,40 +280,69 @@ RunOutcome run_with(const v1::Case& c, int ranks, RunOptions o) {
   return r;
 }
 
-TEST(RankConsistency, OpenChannelResumesFromCheckpointOnAnyRankCount) {
-  // A checkpoint written mid-run on 2 ranks (the id counter and the boundary tallies are in
-  // its state, the buffer membership in its columns) continues on 4 and on 1 rank to the same
-  // particles, ids and fields as an uninterrupted 1-rank run.
-  auto c = open_channel();
-  c.mutable_time()->set_max_steps(1500);
+// A checkpoint written at step `at` of a 2-rank run continues on 4 and on 1 rank to the same
+// particles, ids and fields as an uninterrupted 1-rank run of `steps` steps, carrying over
+// the 2-rank run's series up to the checkpoint.
+void check_resume(const std::string& name, v1::Case c, std::int64_t steps, int at) {
+  c.mutable_time()->set_max_steps(steps);
   c.mutable_output()->set_interval(0);
-  const std::string dir = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_open_resume_";
+  const std::string dir = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_" + name + "_resume_";
   RunOptions o;
   o.output_dir = dir + "reference";
   ASSERT_EQ(run_with(c, 1, o).status, RunStatus::kCompleted);
   o.output_dir = dir + "checkpointed";
   int polls = 0;
-  o.checkpoint_requested = [&polls] { return ++polls == 700; };  // once per step, rank 0
+  o.checkpoint_requested = [&polls, at] { return ++polls == at; };  // once per step, rank 0
   ASSERT_EQ(run_with(c, 2, o).status, RunStatus::kCompleted);
-  const std::string ckpt = dir + "checkpointed/checkpoints/ckpt_000000000700.h5";
+  char ckpt[64];
+  std::snprintf(ckpt, sizeof ckpt, "checkpointed/checkpoints/ckpt_%012d.h5", at);
   for (int ranks : {4, 1}) {
     RunOptions ro;
     ro.output_dir = dir + "resumed_" + std::to_string(ranks);
-    ro.resume_from = ckpt;
+    ro.resume_from = dir + ckpt;
+    // The 2-rank run went on past its checkpoint: its rows after the checkpoint must go.
+    ro.previous_result = dir + "checkpointed/result.h5";
     ASSERT_EQ(run_with(c, ranks, ro).status, RunStatus::kCompleted) << ranks << " ranks";
   }
   if (world_rank() != 0) return;
+  // The carried-over series line up with an uninterrupted run's, row for row.
+  test::ResultReader rr(dir + "reference/result.h5");
+  for (int ranks : {4, 1}) {
+    test::ResultReader rs(dir + "resumed_" + std::to_string(ranks) + "/result.h5");
+    EXPECT_EQ(rs.series("diagnostics/time"), rr.series("diagnostics/time")) << ranks << " ranks";
+    for (const char* n : {"diagnostics/step", "diagnostics/max_density_deviation_at",
+                          "phase/melted", "bodies/time", "open_boundaries/time"})
+      if (rr.has_series(n)) {
+        EXPECT_EQ(rs.series_shape(n), rr.series_shape(n)) << n << ", " << ranks << " ranks";
+      }
+  }
   const Fields ref = read_last(dir + "reference/result.h5");
   const double dc = max_relative_difference(ref, read_last(dir + "checkpointed/result.h5"));
   const double d4 = max_relative_difference(ref, read_last(dir + "resumed_4/result.h5"));
   const double d1 = max_relative_difference(ref, read_last(dir + "resumed_1/result.h5"));
   std::printf(
-      "open channel, 1500 steps: uninterrupted 1 rank vs 2 ranks writing a checkpoint at step "
-      "700 %.3g, resumed on 4 ranks %.3g, resumed on 1 rank %.3g\n",
-      dc, d4, d1);
+      "%s, %lld steps: uninterrupted 1 rank vs 2 ranks writing a checkpoint at step %d %.3g, "
+      "resumed on 4 ranks %.3g, resumed on 1 rank %.3g\n",
+      name.c_str(), static_cast<long long>(steps), at, dc, d4, d1);
   EXPECT_EQ(dc, 0.0);
   EXPECT_EQ(d4, 0.0);
   EXPECT_EQ(d1, 0.0);
+}
+
+TEST(RankConsistency, OpenChannelResumesFromCheckpointOnAnyRankCount) {
+  // The id counter and the boundary tallies are in the checkpoint's state, the buffer
+  // membership in its columns.
+  check_resume("open", open_channel(), 1500, 700);
+}
+
+TEST(RankConsistency, BolusesResumeFromCheckpointOnAnyRankCount) {
+  // Bodies, their contact history and phase transitions continue from the checkpoint; the
+  // first step's contact drift needs the neighbour list of the checkpointed positions.
+  auto c = test::load_case("gastric_boluses_2d");
+  c.set_dx(0.4);
+  for (auto& b : *c.mutable_bodies()) b.set_initial_concentration(0.79);
+  c.mutable_output()->set_series_interval(1e-6);  // every step: rows after the checkpoint
+  check_resume("boluses", c, 400, 200);
 }
 
 TEST(RankConsistency, DamBreakRebalances) {

@@ -45,6 +45,8 @@ dim = f["meta"].attrs["dimension"]
 three_d = int(dim.decode() if isinstance(dim, bytes) else dim) == 3  # positions have 3 columns in 2D too
 aspect = np.ptp(x0[:, ib]) / max(np.ptp(x0[:, ia]), 1e-300)
 fig, axes = plt.subplots(rows, 2, figsize=(12, 0.3 + rows * (5.2 * aspect + 0.35)), squeeze=False)
+for ax in np.ravel(axes)[len(pick):]:  # an odd number of frames leaves one panel empty
+    ax.set_visible(False)
 for ax, k in zip(np.ravel(axes), pick):
     s = S[k]
     x = s["position"][:][:, [ia, ib]]

@@ -18,6 +18,7 @@ import numpy as np
 out = sys.argv[1]
 SCENES = [  # folder, scalar, bounds of the scalar (initial and boundary values), times to list
     ("gastric_04", "concentration", (0.0, 1.0), [0, 0.2, 0.4, 0.6, 0.8, 1.0]),
+    ("gastric_01", "concentration", (0.0, 1.0), [0, 0.2, 0.4, 0.6, 0.8, 1.0]),
     ("powder_2d_coarse", "temperature", (0.0, 100.0), [0, 0.1, 0.25, 0.3, 0.4, 0.5, 0.55, 0.6, 0.7, 0.75]),
     ("powder_3d_coarse", "temperature", (500.0, 1800.0), [0, 2.5e-5, 5e-5, 1e-4, 1.5e-4, 1.6e-4, 1.75e-4]),
     ("powder_slice_2d", "temperature", (500.0, 1800.0), [0, 2.5e-5, 5e-5, 7.5e-5, 1e-4, 1.5e-4, 1.6e-4, 1.75e-4]),

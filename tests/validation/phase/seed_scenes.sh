@@ -6,6 +6,8 @@
 # melting (dx 2.5 um, 104k steps) about 100 min (75 min on two ranks), its 2D slice at the
 # paper's dx = 1 um (261k steps) about 19 min, the gastric boluses (dx 0.4) under 2 min.
 # A finished run is kept (delete its folder to redo it). SPHD_RANKS sets the ranks (default 1).
+# SPHD_PAPER=1 adds the gastric scene at the paper's dx = 0.1 (67k particles; it stops on the
+# solid-fraction guard at t = 0.623 after 82 min on two ranks, see phase_change.md).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
 build=${1:-$root/build}
@@ -29,8 +31,14 @@ run gastric_04 "$root/cases/gastric_boluses_2d.textproto" 's/^dx: 0.2$/dx: 0.4/'
 run powder_2d_coarse "$root/cases/powder_grains_2d_coarse.textproto"
 run powder_3d_coarse "$root/cases/powder_melting_3d_coarse.textproto"
 run powder_slice_2d "$root/cases/powder_melting_slice_2d.textproto"
+if [ "${SPHD_PAPER:-0}" = 1 ]; then
+  run gastric_01 "$root/cases/gastric_boluses_2d.textproto" 's/^dx: 0.2$/dx: 0.1/'
+fi
 render=$root/tests/validation/phase/render.py
 /usr/bin/python3 "$render" "$out/gastric_04/result.h5" "$reports" gastric_dx04
+if [ -f "$out/gastric_01/result.h5" ]; then
+  /usr/bin/python3 "$render" "$out/gastric_01/result.h5" "$reports" gastric_dx01 --frames 5
+fi
 /usr/bin/python3 "$render" "$out/powder_2d_coarse/result.h5" "$reports" powder_grains_2d_coarse \
   --scalar temperature --speed-max 800 --labels grain,melt,gas --frames 8
 /usr/bin/python3 "$render" "$out/powder_3d_coarse/result.h5" "$reports" powder_melting_3d_coarse_xy \
