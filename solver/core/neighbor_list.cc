@@ -60,16 +60,15 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
     }
   }
 
-  // Stencil offsets in linear cell index, fixed order.
-  constexpr int kStencil = D == 2 ? 9 : 27;
-  long long offs[kStencil];
+  // The stencil as rows of three cells along x, which are adjacent in the linear cell index,
+  // so each row is one contiguous range of cell_items_. Fixed order (z, then y, then x).
+  constexpr int kRows = D == 2 ? 3 : 9;
+  long long rows[kRows];
   {
     int k = 0;
-    const long long sx = 1, sy = dims_[0],
-                    sz = D == 3 ? static_cast<long long>(dims_[0]) * dims_[1] : 0;
+    const long long sy = dims_[0], sz = D == 3 ? static_cast<long long>(dims_[0]) * dims_[1] : 0;
     for (int dz = (D == 3 ? -1 : 0); dz <= (D == 3 ? 1 : 0); ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) offs[k++] = dz * sz + dy * sy + dx * sx;
+      for (int dy = -1; dy <= 1; ++dy) rows[k++] = dz * sz + dy * sy - 1;
   }
 
   const double rc2 = rc * rc;
@@ -77,7 +76,7 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
   const std::size_t owned = s.owned();
   start_.resize(owned + 1);
   fluid_end_.resize(owned);
-  nbr_.clear();
+  pairs_ = 0;
   start_[0] = 0;
   contact_start_.assign(owned + 1, 0);
   contact_nbr_.clear();
@@ -93,39 +92,60 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
     const bool wall_rigid = rigid_all && kind[i] == Kind::kWall;
     if (!fluid && !contacts && !all) {
       bool any = false;
-      for (int k = 0; k < kStencil && !any; ++k)
-        any = cell_fluid_[static_cast<std::size_t>(ci + offs[k])] > 0;
+      for (int k = 0; k < kRows && !any; ++k)
+        for (int d = 0; d < 3 && !any; ++d)
+          any = cell_fluid_[static_cast<std::size_t>(ci + rows[k] + d)] > 0;
       if (!any) {
-        start_[i + 1] = fluid_end_[i] = static_cast<std::uint32_t>(nbr_.size());
+        start_[i + 1] = fluid_end_[i] = static_cast<std::uint32_t>(pairs_);
         contact_start_[i + 1] = static_cast<std::uint32_t>(contact_nbr_.size());
         continue;
       }
     }
-    others_.clear();
+    // Room for every candidate, so that appending needs no capacity check.
+    std::size_t candidates = 0;
+    for (int k = 0; k < kRows; ++k) {
+      const std::size_t c = static_cast<std::size_t>(ci + rows[k]);
+      candidates += cell_start_[c + 3] - cell_start_[c];
+    }
+    if (nbr_.size() < pairs_ + candidates)
+      nbr_.resize(std::max(2 * nbr_.size(), pairs_ + candidates));
+    if (others_.size() < candidates) others_.resize(candidates);
+    // Branch-free appends: every candidate is written and the counts advance only for the
+    // neighbours kept (a data-dependent branch here mispredicts about half the time). Fluid
+    // particles keep all neighbours in `out`; the others keep fluid ones there and, as
+    // required, rigid or all non-fluid ones in `other`, which follow.
+    std::uint32_t* out = nbr_.data() + pairs_;
+    std::uint32_t* other = others_.data();
+    std::size_t m = 0, o = 0;
+    const std::uint32_t self = static_cast<std::uint32_t>(i);
     const Vec<D> xi = x[i];
-    for (int k = 0; k < kStencil; ++k) {
-      const std::size_t c = static_cast<std::size_t>(ci + offs[k]);
-      for (std::uint32_t q = cell_start_[c]; q < cell_start_[c + 1]; ++q) {
+    for (int k = 0; k < kRows; ++k) {
+      const std::size_t c = static_cast<std::size_t>(ci + rows[k]);
+      const std::uint32_t q_end = cell_start_[c + 3];
+      for (std::uint32_t q = cell_start_[c]; q < q_end; ++q) {
         const std::uint32_t j = cell_items_[q];
-        if (j == i) continue;
         const double r2 = (xi - x[j]).squaredNorm();
-        if (fluid || kind[j] == Kind::kFluid) {
-          if (r2 < rc2) nbr_.push_back(j);
-        } else if ((all || (wall_rigid && kind[j] == Kind::kRigid)) && r2 < rc2) {
-          others_.push_back(j);
-        }
-        if (contacts && kind[j] != Kind::kFluid && r2 < cr2 &&
-            ((kind[j] == Kind::kRigid && contact->body[j] != contact->body[i]) ||
-             (kind[j] == Kind::kWall && contact->walls))) {
+        const Kind kj = kind[j];
+        const bool near = (r2 < rc2) & (j != self);
+        const bool to_out = fluid | (kj == Kind::kFluid);
+        out[m] = j;
+        m += static_cast<std::size_t>(near & to_out);
+        other[o] = j;
+        o += static_cast<std::size_t>(near & !to_out & (all | (wall_rigid & (kj == Kind::kRigid))));
+        if (contacts && kj != Kind::kFluid && j != self && r2 < cr2 &&
+            ((kj == Kind::kRigid && contact->body[j] != contact->body[i]) ||
+             (kj == Kind::kWall && contact->walls))) {
           contact_nbr_.push_back(j);
           min_contact_ = std::min(min_contact_, std::sqrt(r2));
         }
       }
     }
     // Non-fluid particles: fluid neighbours first (the wall condition stops there).
-    fluid_end_[i] = static_cast<std::uint32_t>(nbr_.size());
-    nbr_.insert(nbr_.end(), others_.begin(), others_.end());
-    start_[i + 1] = static_cast<std::uint32_t>(nbr_.size());
+    pairs_ += m;
+    fluid_end_[i] = static_cast<std::uint32_t>(pairs_);
+    std::copy(other, other + o, out + m);
+    pairs_ += o;
+    start_[i + 1] = static_cast<std::uint32_t>(pairs_);
     contact_start_[i + 1] = static_cast<std::uint32_t>(contact_nbr_.size());
   }
 }

@@ -37,7 +37,7 @@ class NeighborList {
   const std::uint32_t* end(std::size_t i) const { return nbr_.data() + start_[i + 1]; }
   // For wall and rigid particles: the end of the fluid neighbours, which come first.
   const std::uint32_t* fluid_end(std::size_t i) const { return nbr_.data() + fluid_end_[i]; }
-  std::size_t pairs() const { return nbr_.size(); }
+  std::size_t pairs() const { return pairs_; }
   // Contact candidates of owned rigid particle i (empty without a ContactQuery).
   const std::uint32_t* contacts_begin(std::size_t i) const {
     return contact_nbr_.data() + contact_start_[i];
@@ -80,7 +80,9 @@ class NeighborList {
   CellBox<D> box_;
   ICoord<D> dims_{};
   std::vector<std::uint32_t> cell_start_, cell_items_, cell_of_, cell_fluid_;
-  std::vector<std::uint32_t> start_, nbr_, fluid_end_, others_;
+  std::vector<std::uint32_t> start_, fluid_end_, others_;
+  std::vector<std::uint32_t> nbr_;  // storage; the first pairs_ entries are the lists
+  std::size_t pairs_ = 0;
   std::vector<std::uint32_t> contact_start_, contact_nbr_;
   double min_contact_ = 0;
 };

@@ -65,6 +65,69 @@ TEST(NeighborList, MatchesBruteForce3DPeriodicX) {
   check_against_brute_force<3>({true, false, false}, 3);
 }
 
+// Walls and rigid particles list their fluid neighbours first, then (with rigid_all) the
+// rigid ones (walls) or all non-fluid ones (rigid particles); rigid particles also get their
+// contact candidates (other bodies and walls within the contact range).
+TEST(NeighborList, MixedKindsMatchBruteForce) {
+  const double rc = 0.3, range = 0.12;
+  CellGrid<2> grid(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc, {false, false});
+  Comm comm(MPI_COMM_WORLD);
+  Halo<2> halo(grid, comm);
+  std::vector<std::int64_t> counts(static_cast<size_t>(grid.total()), 1);
+  halo.set_decomposition(Decomposition<2>(grid, 1, counts));
+  const std::size_t n = 700;
+  ParticleStore<2> s;
+  s.resize(n, n);
+  std::vector<std::int32_t> body(n, -1);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.7);
+  for (std::size_t i = 0; i < n; ++i) {
+    s.x[i] = Vec<2>(u(rng), u(rng));
+    s.id[i] = static_cast<std::int64_t>(i);
+    const int k = static_cast<int>(i % 5);
+    s.kind[i] = k < 2 ? Kind::kFluid : (k < 4 ? Kind::kRigid : Kind::kWall);
+    if (s.kind[i] == Kind::kRigid) body[i] = static_cast<std::int32_t>(i % 3);
+  }
+  halo.build_ghosts(s);
+  for (const bool rigid_all : {false, true}) {
+    for (const bool walls : {false, true}) {
+      ContactQuery q{body.data(), range, walls};
+      NeighborList<2> nl;
+      nl.build(s, grid, halo.ghost_box(), rc, &q, rigid_all);
+      for (std::size_t i = 0; i < s.owned(); ++i) {
+        std::multiset<std::int64_t> fluid, rest, contacts;
+        for (std::size_t j = 0; j < n; ++j) {
+          const double r = (s.x[i] - s.x[j]).norm();
+          if (j == i) continue;
+          const bool jf = s.kind[j] == Kind::kFluid;
+          if (r < rc && (jf || s.kind[i] == Kind::kFluid)) fluid.insert(s.id[j]);
+          if (r < rc && !jf && rigid_all &&
+              (s.kind[i] == Kind::kRigid ||
+               (s.kind[i] == Kind::kWall && s.kind[j] == Kind::kRigid)))
+            rest.insert(s.id[j]);
+          if (r < range && s.kind[i] == Kind::kRigid && !jf &&
+              ((s.kind[j] == Kind::kRigid && body[j] != body[i]) ||
+               (s.kind[j] == Kind::kWall && walls)))
+            contacts.insert(s.id[j]);
+        }
+        std::multiset<std::int64_t> got_fluid, got_rest, got_contacts;
+        for (const std::uint32_t* j = nl.begin(i); j != nl.fluid_end(i); ++j)
+          got_fluid.insert(s.id[*j]);
+        for (const std::uint32_t* j = nl.fluid_end(i); j != nl.end(i); ++j)
+          got_rest.insert(s.id[*j]);
+        for (const std::uint32_t* j = nl.contacts_begin(i); j != nl.contacts_end(i); ++j)
+          got_contacts.insert(s.id[*j]);
+        // A wall with no fluid in the cells around it is skipped altogether.
+        if (s.kind[i] == Kind::kWall && fluid.empty() && got_fluid.empty() && got_rest.empty())
+          continue;
+        ASSERT_EQ(got_fluid, fluid) << "particle " << i << " rigid_all " << rigid_all;
+        ASSERT_EQ(got_rest, rest) << "particle " << i << " rigid_all " << rigid_all;
+        ASSERT_EQ(got_contacts, contacts) << "particle " << i << " walls " << walls;
+      }
+    }
+  }
+}
+
 TEST(NeighborList, OrderIsCanonical) {
   // The same particles stored in two different orders give the same neighbour id sequences.
   CellGrid<2> grid(Vec<2>(0, 0), Vec<2>(1, 1), 0.25, {false, false});

@@ -5,9 +5,14 @@
 # The 2D powder grains (dx 0.25, 157k steps) take about 40 min on one core, the 3D powder
 # melting (dx 2.5 um, 104k steps) about 100 min (75 min on two ranks), its 2D slice at the
 # paper's dx = 1 um (261k steps) about 19 min, the gastric boluses (dx 0.4) under 2 min.
-# A finished run is kept (delete its folder to redo it). SPHD_RANKS sets the ranks (default 1).
-# SPHD_PAPER=1 adds the gastric scene at the paper's dx = 0.1 (67k particles; it stops on the
-# solid-fraction guard at t = 0.623 after 82 min on two ranks, see phase_change.md).
+# A finished run is kept (delete its folder to redo it); an unfinished one (stopped by SIGTERM,
+# which writes a checkpoint, or cut off) continues from its latest checkpoint when the script
+# is run again. SPHD_RANKS sets the ranks (default 1). SPHD_PAPER=1 adds the gastric scene at
+# the paper's dx = 0.1 (67k particles, 160k steps, about 2.2 h on two idle cores; with the
+# paper's c = 1e3 it stopped on the solid-fraction guard at t = 0.623, see phase_change.md);
+# SPHD_PAPER=2 also the powder scenes at the paper's resolution (2D: 58k particles, about
+# 5 h on two cores; 3D: 113k particles, about 17 h on two), meant to be continued over
+# several invocations.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
 build=${1:-$root/build}
@@ -19,25 +24,52 @@ run() {  # name case-file [sed expression]
   local name=$1 case=$2 edit=${3:-}
   if [ -f "$out/$name/wall_seconds" ]; then echo "== $name: kept"; return; fi
   mkdir -p "$out/$name"
-  sed -E "${edit:-}" "$case" >"$out/$name.textproto"
-  echo "== $name ($(date +%H:%M:%S))"
-  local t0=$SECONDS
-  mpirun --oversubscribe --allow-run-as-root --bind-to none -np "$ranks" \
-    "$build/worker/sph-worker" --case "$out/$name.textproto" --out "$out/$name" --quiet 2>&1 |
-    grep -E "^(completed|unstable|error)" || true
-  echo "$((SECONDS - t0))" >"$out/$name/wall_seconds"
+  local resume=() last
+  last=$(ls "$out/$name"/checkpoints/ckpt_*.h5 2>/dev/null | tail -n 1 || true)
+  if [ -n "$last" ]; then
+    resume=(--resume "$last")
+  else
+    # A checkpoint every 15 min of wall time, so that a long run can go on later.
+    sed -E "${edit:-}" "$case" |
+      sed -E 's/^(output \{.*)\}$/\1checkpoint_wall_interval: 900 }/' >"$out/$name.textproto"
+  fi
+  echo "== $name ($(date +%H:%M:%S))${last:+, resuming from $last}"
+  local t0=$SECONDS status
+  status=$(mpirun --oversubscribe --allow-run-as-root --bind-to none -np "$ranks" \
+    "$build/worker/sph-worker" --case "$out/$name.textproto" --out "$out/$name" "${resume[@]}" \
+    --quiet 2>&1 | grep -E "^(completed|unstable|interrupted|error|sph-worker)" || true)
+  echo "$status"
+  # Wall seconds summed over the pieces of a run that was continued from a checkpoint.
+  echo "$((SECONDS - t0))" >>"$out/$name/wall_seconds_pieces"
+  case "$status" in
+    completed* | unstable*) awk '{s += $1} END {print s}' "$out/$name/wall_seconds_pieces" \
+      >"$out/$name/wall_seconds" ;;
+    *) echo "== $name did not finish; run the script again to continue it"; exit 1 ;;
+  esac
 }
 run gastric_04 "$root/cases/gastric_boluses_2d.textproto" 's/^dx: 0.2$/dx: 0.4/'
 run powder_2d_coarse "$root/cases/powder_grains_2d_coarse.textproto"
 run powder_3d_coarse "$root/cases/powder_melting_3d_coarse.textproto"
 run powder_slice_2d "$root/cases/powder_melting_slice_2d.textproto"
-if [ "${SPHD_PAPER:-0}" = 1 ]; then
+if [ "${SPHD_PAPER:-0}" -ge 1 ]; then
   run gastric_01 "$root/cases/gastric_boluses_2d.textproto" 's/^dx: 0.2$/dx: 0.1/'
+fi
+if [ "${SPHD_PAPER:-0}" -ge 2 ]; then
+  run powder_2d "$root/cases/powder_grains_2d.textproto"
+  run powder_3d "$root/cases/powder_melting_3d.textproto"
 fi
 render=$root/tests/validation/phase/render.py
 /usr/bin/python3 "$render" "$out/gastric_04/result.h5" "$reports" gastric_dx04
-if [ -f "$out/gastric_01/result.h5" ]; then
+if [ -f "$out/gastric_01/wall_seconds" ]; then
   /usr/bin/python3 "$render" "$out/gastric_01/result.h5" "$reports" gastric_dx01 --frames 5
+fi
+if [ -f "$out/powder_2d/wall_seconds" ]; then
+  /usr/bin/python3 "$render" "$out/powder_2d/result.h5" "$reports" powder_grains_2d \
+    --scalar temperature --speed-max 800 --labels grain,melt,gas --frames 8
+fi
+if [ -f "$out/powder_3d/wall_seconds" ]; then
+  /usr/bin/python3 "$render" "$out/powder_3d/result.h5" "$reports" powder_melting_3d_xz \
+    --scalar temperature --labels grain,melt,gas --frames 6 --plane xz
 fi
 /usr/bin/python3 "$render" "$out/powder_2d_coarse/result.h5" "$reports" powder_grains_2d_coarse \
   --scalar temperature --speed-max 800 --labels grain,melt,gas --frames 8
