@@ -11,9 +11,14 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
                             const CellBox<D>& box, double rc, const ContactQuery* contact,
                             bool rigid_all) {
   box_ = box;
+  // Half cells: the box's cells split in two along every axis. The 5^D half cells around a
+  // particle cover (2.5 r_c)^D instead of the (3 r_c)^D of the 3^D cells, 42% fewer candidates
+  // in 3D before the rows that lie wholly beyond r_c are skipped (below). They are global like
+  // the cells, so the canonical order stays independent of the decomposition.
   std::size_t ncell = 1;
   for (int a = 0; a < D; ++a) {
-    dims_[a] = box.hi[a] - box.lo[a];
+    dims_[a] = 2 * (box.hi[a] - box.lo[a]);
+    half_[a] = 0.5 * grid.cell[a];
     ncell *= static_cast<std::size_t>(dims_[a]);
   }
   const std::size_t n = s.size();
@@ -25,14 +30,16 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
   const ParticleId* id = s.id.data();
   const std::size_t owned_n = s.owned();
   for (std::size_t i = 0; i < n; ++i) {
-    const ICoord<D> c = grid.bin(x[i]);
-    // Owned particles belong to the interior cells; clamping keeps a corrupted position
-    // (reported by the stability guard at the end of the step) from indexing outside.
-    const int margin = i < owned_n ? 1 : 0;
+    const ICoord<D> c = grid.half_bin(x[i]);
+    // Owned particles belong to the interior cells (the ghost layer is two half cells deep);
+    // clamping keeps a corrupted position (reported by the stability guard at the end of the
+    // step) from indexing outside.
+    const int margin = i < owned_n ? 2 : 0;
     std::size_t lin = 0;
     for (int a = D - 1; a >= 0; --a)
-      lin = lin * static_cast<std::size_t>(dims_[a]) +
-            static_cast<std::size_t>(std::clamp(c[a] - box.lo[a], margin, dims_[a] - 1 - margin));
+      lin =
+          lin * static_cast<std::size_t>(dims_[a]) +
+          static_cast<std::size_t>(std::clamp(c[a] - 2 * box.lo[a], margin, dims_[a] - 1 - margin));
     cell_of_[i] = static_cast<std::uint32_t>(lin);
     ++cell_start_[lin + 1];
     if (kind[i] == Kind::kFluid) ++cell_fluid_[lin];
@@ -60,16 +67,22 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
     }
   }
 
-  // The stencil as rows of three cells along x, which are adjacent in the linear cell index,
+  // The stencil as rows of five half cells along x, which are adjacent in the linear index,
   // so each row is one contiguous range of cell_items_. Fixed order (z, then y, then x).
-  constexpr int kRows = D == 2 ? 3 : 9;
+  constexpr int kRows = D == 2 ? 5 : 25;
   long long rows[kRows];
+  int row_dy[kRows], row_dz[kRows];
   {
     int k = 0;
     const long long sy = dims_[0], sz = D == 3 ? static_cast<long long>(dims_[0]) * dims_[1] : 0;
-    for (int dz = (D == 3 ? -1 : 0); dz <= (D == 3 ? 1 : 0); ++dz)
-      for (int dy = -1; dy <= 1; ++dy) rows[k++] = dz * sz + dy * sy - 1;
+    for (int dz = (D == 3 ? -2 : 0); dz <= (D == 3 ? 2 : 0); ++dz)
+      for (int dy = -2; dy <= 2; ++dy) {
+        row_dy[k] = dy;
+        row_dz[k] = dz;
+        rows[k++] = dz * sz + dy * sy - 2;
+      }
   }
+  const Vec<D> grid_lo = grid.lo;
 
   const double rc2 = rc * rc;
   const double cr2 = contact ? contact->range * contact->range : 0.0;
@@ -93,7 +106,7 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
     if (!fluid && !contacts && !all) {
       bool any = false;
       for (int k = 0; k < kRows && !any; ++k)
-        for (int d = 0; d < 3 && !any; ++d)
+        for (int d = 0; d < 5 && !any; ++d)
           any = cell_fluid_[static_cast<std::size_t>(ci + rows[k] + d)] > 0;
       if (!any) {
         start_[i + 1] = fluid_end_[i] = static_cast<std::uint32_t>(pairs_);
@@ -101,11 +114,31 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
         continue;
       }
     }
-    // Room for every candidate, so that appending needs no capacity check.
+    // Rows whose every point is at least r_c away across y (and z) are skipped; the gap to a
+    // row is measured from the particle's own half cell, so a particle clamped into an edge
+    // half cell (a wall particle beyond a non-periodic edge) only gets a smaller gap.
+    const Vec<D> xi = x[i];
+    double below[2] = {0, 0}, above[2] = {0, 0};  // to the own half cell's faces, y and z
+    const ICoord<D> hi_cell = grid.half_bin(xi);
+    for (int a = 1; a < D; ++a) {
+      const double face = grid_lo[a] + half_[a] * static_cast<double>(hi_cell[a]);
+      below[a - 1] = xi[a] - face;
+      above[a - 1] = face + half_[a] - xi[a];
+    }
+    auto gap = [&](int axis, int d) {
+      const double g = d > 0   ? above[axis] + (d - 1) * half_[axis + 1]
+                       : d < 0 ? below[axis] + (-d - 1) * half_[axis + 1]
+                               : 0.0;
+      return std::max(g, 0.0);
+    };
+    bool skip[kRows];
     std::size_t candidates = 0;
     for (int k = 0; k < kRows; ++k) {
+      const double gy = gap(0, row_dy[k]), gz = D == 3 ? gap(1, row_dz[k]) : 0.0;
+      skip[k] = gy * gy + gz * gz >= rc2;
+      if (skip[k]) continue;
       const std::size_t c = static_cast<std::size_t>(ci + rows[k]);
-      candidates += cell_start_[c + 3] - cell_start_[c];
+      candidates += cell_start_[c + 5] - cell_start_[c];
     }
     if (nbr_.size() < pairs_ + candidates)
       nbr_.resize(std::max(2 * nbr_.size(), pairs_ + candidates));
@@ -118,10 +151,10 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
     std::uint32_t* other = others_.data();
     std::size_t m = 0, o = 0;
     const std::uint32_t self = static_cast<std::uint32_t>(i);
-    const Vec<D> xi = x[i];
     for (int k = 0; k < kRows; ++k) {
+      if (skip[k]) continue;
       const std::size_t c = static_cast<std::size_t>(ci + rows[k]);
-      const std::uint32_t q_end = cell_start_[c + 3];
+      const std::uint32_t q_end = cell_start_[c + 5];
       for (std::uint32_t q = cell_start_[c]; q < q_end; ++q) {
         const std::uint32_t j = cell_items_[q];
         const double r2 = (xi - x[j]).squaredNorm();

@@ -1,8 +1,8 @@
 #pragma once
 // Cell-linked neighbour search producing a compact (CSR) neighbour list per step, shared by
 // every pass over pairs in that step (density, wall extrapolation, forces). The list of a
-// particle is in canonical order: the 3^D cells around it in fixed order, and ascending global
-// id within each cell. Sums over neighbours are therefore evaluated in the same order
+// particle is in canonical order: the 5^D half cells around it in fixed order, and ascending
+// global id within each half cell. Sums over neighbours are therefore evaluated in the same order
 // whatever the rank count or memory order, which makes results independent of the
 // decomposition.
 #include <cstdint>
@@ -60,25 +60,24 @@ class NeighborList {
   // c, which must lie in this rank's box (not in the ghost layer). Canonical order.
   template <class Fn>
   void for_each_near(const ICoord<D>& c, Fn&& fn) const {
+    // The 3^D cells are 6^D half cells, in rows of six adjacent along x.
     ICoord<D> l;
-    for (int a = 0; a < D; ++a) l[a] = c[a] - box_.lo[a];
-    for (int dz = (D == 3 ? -1 : 0); dz <= (D == 3 ? 1 : 0); ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          std::size_t lin =
-              static_cast<std::size_t>(l[0] + dx) +
-              static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(l[1] + dy);
-          if constexpr (D == 3)
-            lin += static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(dims_[1]) *
-                   static_cast<std::size_t>(l[2] + dz);
-          for (std::uint32_t q = cell_start_[lin]; q < cell_start_[lin + 1]; ++q)
-            fn(cell_items_[q]);
-        }
+    for (int a = 0; a < D; ++a) l[a] = 2 * (c[a] - box_.lo[a]) - 2;
+    for (int dz = 0; dz < (D == 3 ? 6 : 1); ++dz)
+      for (int dy = 0; dy < 6; ++dy) {
+        std::size_t lin = static_cast<std::size_t>(l[0]) +
+                          static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(l[1] + dy);
+        if constexpr (D == 3)
+          lin += static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(dims_[1]) *
+                 static_cast<std::size_t>(l[2] + dz);
+        for (std::uint32_t q = cell_start_[lin]; q < cell_start_[lin + 6]; ++q) fn(cell_items_[q]);
+      }
   }
 
  private:
   CellBox<D> box_;
-  ICoord<D> dims_{};
+  ICoord<D> dims_{};              // half cells of box_ along each axis
+  Vec<D> half_ = Vec<D>::Zero();  // half-cell size
   std::vector<std::uint32_t> cell_start_, cell_items_, cell_of_, cell_fluid_;
   std::vector<std::uint32_t> start_, fluid_end_, others_;
   std::vector<std::uint32_t> nbr_;  // storage; the first pairs_ entries are the lists

@@ -53,6 +53,18 @@ struct CellGrid {
       if (!periodic[a]) c[a] = std::clamp(c[a], 0, n[a] - 1);
     return c;
   }
+  // The half cell (each cell split in two along every axis) of a position for the neighbour
+  // search, clamped like bin(): half cell h lies in cell floor(h / 2) = bin(x).
+  ICoord<D> half_bin(const Vec<D>& x) const {
+    ICoord<D> c;
+    for (int a = 0; a < D; ++a) {
+      const double f = (x[a] - lo[a]) / cell[a];
+      int i =
+          std::isfinite(f) ? static_cast<int>(std::floor(2 * std::clamp(f, -2.0, n[a] + 1.0))) : 0;
+      c[a] = periodic[a] ? std::clamp(i, -2, 2 * n[a] + 1) : std::clamp(i, 0, 2 * n[a] - 1);
+    }
+    return c;
+  }
   // Wraps periodic axes into [0, n) and clamps the others.
   ICoord<D> canonical(ICoord<D> c) const {
     for (int a = 0; a < D; ++a) {
