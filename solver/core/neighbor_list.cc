@@ -141,17 +141,29 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
       candidates += cell_start_[c + 5] - cell_start_[c];
     }
     if (nbr_.size() < pairs_ + candidates)
-      nbr_.resize(std::max(2 * nbr_.size(), pairs_ + candidates));
+      nbr_.resize(std::max(nbr_.size() + nbr_.size() / 4, pairs_ + candidates));  // 25% spare
     if (others_.size() < candidates) others_.resize(candidates);
     // Branch-free appends: every candidate is written and the counts advance only for the
-    // neighbours kept (a data-dependent branch here mispredicts about half the time). Fluid
-    // particles keep all neighbours in `out`; the others keep fluid ones there and, as
-    // required, rigid or all non-fluid ones in `other`, which follow.
+    // neighbours kept (a data-dependent branch here mispredicts often once the particles are
+    // disordered). Fluid particles keep all neighbours in `out`; the others keep fluid ones
+    // there and, as required, rigid or all non-fluid ones in `other`, which follow.
     std::uint32_t* out = nbr_.data() + pairs_;
     std::uint32_t* other = others_.data();
     std::size_t m = 0, o = 0;
     const std::uint32_t self = static_cast<std::uint32_t>(i);
-    for (int k = 0; k < kRows; ++k) {
+    if (fluid) {  // the common case: every neighbour whatever its kind, one store per candidate
+      for (int k = 0; k < kRows; ++k) {
+        if (skip[k]) continue;
+        const std::size_t c = static_cast<std::size_t>(ci + rows[k]);
+        const std::uint32_t q_end = cell_start_[c + 5];
+        for (std::uint32_t q = cell_start_[c]; q < q_end; ++q) {
+          const std::uint32_t j = cell_items_[q];
+          out[m] = j;
+          m += static_cast<std::size_t>(((xi - x[j]).squaredNorm() < rc2) & (j != self));
+        }
+      }
+    }
+    for (int k = 0; k < kRows && !fluid; ++k) {
       if (skip[k]) continue;
       const std::size_t c = static_cast<std::size_t>(ci + rows[k]);
       const std::uint32_t q_end = cell_start_[c + 5];
@@ -160,7 +172,7 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
         const double r2 = (xi - x[j]).squaredNorm();
         const Kind kj = kind[j];
         const bool near = (r2 < rc2) & (j != self);
-        const bool to_out = fluid | (kj == Kind::kFluid);
+        const bool to_out = kj == Kind::kFluid;
         out[m] = j;
         m += static_cast<std::size_t>(near & to_out);
         other[o] = j;
