@@ -20,6 +20,6 @@ echo "code version: $(git -C "$root" describe --always --dirty)" >"$log"
 "$build/tests/stability/sph_stability_tests" --gtest_color=no 2>&1 | tee -a "$log" || true
 echo "suite wall time: $((SECONDS - t0)) s" >>"$log"
 # The reduced and the full run each have their page.
-page=$root/docs/stability$([ $full = 1 ] && echo -full).md
+page=$root/docs/stability$([ $full = 1 ] && echo -full || true).md
 /usr/bin/python3 "$root/tests/stability/report.py" "$log" "$build/test-output" \
   "$page" "$root/docs/stability" $([ $full = 1 ] && echo full || echo reduced)
