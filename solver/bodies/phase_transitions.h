@@ -28,6 +28,7 @@
 // do not depend on the rank count. Only steps with a transition pay for the gather, and only
 // for the bodies involved.
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,18 @@ class PhaseTransitions {
   std::int64_t melted_total() const { return melted_total_; }
   std::int64_t solidified_total() const { return solidified_total_; }
   std::size_t max_bodies() const { return max_bodies_; }
+  // The running totals are cumulative series: a resumed run continues them.
+  void save(std::map<std::string, double>& state) const {
+    state["phase_melted_total"] = static_cast<double>(melted_total_);
+    state["phase_solidified_total"] = static_cast<double>(solidified_total_);
+  }
+  // Checkpoints written before the totals were saved restart them at zero.
+  void load(const std::map<std::string, double>& state) {
+    if (state.count("phase_melted_total"))
+      melted_total_ = static_cast<std::int64_t>(state.at("phase_melted_total"));
+    if (state.count("phase_solidified_total"))
+      solidified_total_ = static_cast<std::int64_t>(state.at("phase_solidified_total"));
+  }
 
  private:
   struct Record {  // a particle taking part in a regrouping

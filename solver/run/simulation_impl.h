@@ -940,6 +940,7 @@ std::string Simulation<D, K>::write_checkpoint_now() {
   if (bodies_) bodies_->save(state);
   if (contact_) contact_->save(state, comm_);
   if (open_) open_->save(state);
+  if (phase_) phase_->save(state);
   write_checkpoint(comm_, path, s_, state);
   if (comm_.root()) {
     // Keep the two newest checkpoints.
@@ -1095,6 +1096,7 @@ void Simulation<D, K>::start() {
     contact_possible_ = state.count("contact_possible") && state.at("contact_possible") > 0;
     if (bodies_) bodies_->load(state);
     if (open_) open_->load(state);
+    if (phase_) phase_->load(state);
     if (contact_) contact_->load(state);  // every rank reads all pairs ...
     decompose_by_histogram();
     migrate();
