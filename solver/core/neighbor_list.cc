@@ -118,10 +118,13 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
     // row is measured from the particle's own half cell, so a particle clamped into an edge
     // half cell (a wall particle beyond a non-periodic edge) only gets a smaller gap.
     const Vec<D> xi = x[i];
+    // The half cell is the one the stencil is centred on (ci, from the binning above).
     double below[2] = {0, 0}, above[2] = {0, 0};  // to the own half cell's faces, y and z
-    const ICoord<D> hi_cell = grid.half_bin(xi);
+    long long rest = ci / dims_[0];
     for (int a = 1; a < D; ++a) {
-      const double face = grid_lo[a] + half_[a] * static_cast<double>(hi_cell[a]);
+      const long long l = rest % dims_[a];
+      rest /= dims_[a];
+      const double face = grid_lo[a] + half_[a] * static_cast<double>(l + 2 * box.lo[a]);
       below[a - 1] = xi[a] - face;
       above[a - 1] = face + half_[a] - xi[a];
     }
