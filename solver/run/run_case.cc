@@ -7,20 +7,12 @@
 #include "solver/io/hdf5.h"
 #include "solver/run/simulation.h"
 
-#ifndef SPHD_VERSION
-#define SPHD_VERSION "unknown"
-#endif
-
 namespace sph {
 
 extern template class Simulation<2, QuinticSpline<2>>;
 extern template class Simulation<2, WendlandC2<2>>;
 extern template class Simulation<3, QuinticSpline<3>>;
 extern template class Simulation<3, WendlandC2<3>>;
-
-std::string code_version() {
-  return SPHD_VERSION;
-}
 
 const char* to_string(RunStatus s) {
   switch (s) {

@@ -43,13 +43,12 @@
 #include "solver/physics/scalar_diffusion.h"
 #include "solver/physics/wall_boundary.h"
 #include "solver/physics/wall_motion.h"
+#include "solver/run/code_version.h"
 #include "solver/run/output_schedule.h"
 #include "solver/run/run_case.h"
 #include "solver/scene/scene_builder.h"
 
 namespace sph {
-
-std::string code_version();
 
 template <int D, class K>
 class Simulation {
