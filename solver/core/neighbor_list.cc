@@ -13,8 +13,8 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
   box_ = box;
   // Half cells: the box's cells split in two along every axis. The 5^D half cells around a
   // particle cover (2.5 r_c)^D instead of the (3 r_c)^D of the 3^D cells, 42% fewer candidates
-  // in 3D before the rows that lie wholly beyond r_c are skipped (below). They are global like
-  // the cells, so the canonical order stays independent of the decomposition.
+  // in 3D before the half cells that lie wholly beyond r_c are left out (below). They are global
+  // like the cells, so the canonical order stays independent of the decomposition.
   std::size_t ncell = 1;
   for (int a = 0; a < D; ++a) {
     dims_[a] = 2 * (box.hi[a] - box.lo[a]);
@@ -114,34 +114,46 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
         continue;
       }
     }
-    // Rows whose every point is at least r_c away across y (and z) are skipped; the gap to a
-    // row is measured from the particle's own half cell, so a particle clamped into an edge
-    // half cell (a wall particle beyond a non-periodic edge) only gets a smaller gap.
+    // Of each row only the half cells that reach within r_c of the particle are scanned: a
+    // row is skipped when its gap across y (and z) is r_c or more, and its ends along x are
+    // trimmed where the gap along x adds up with it to r_c or more (22% fewer candidates than
+    // whole rows in 3D, 14% in 2D, for particles spread evenly over their half cell). Every
+    // particle left out lies at least r_c away, so the lists and their order are unchanged.
+    // Gaps are measured from the faces of the particle's own half cell, so a particle clamped
+    // into an edge half cell (a wall particle beyond a non-periodic edge) only gets smaller
+    // gaps.
     const Vec<D> xi = x[i];
     // The half cell is the one the stencil is centred on (ci, from the binning above).
-    double below[2] = {0, 0}, above[2] = {0, 0};  // to the own half cell's faces, y and z
-    long long rest = ci / dims_[0];
-    for (int a = 1; a < D; ++a) {
+    double below[D], above[D];  // to the own half cell's faces
+    long long rest = ci;
+    for (int a = 0; a < D; ++a) {
       const long long l = rest % dims_[a];
       rest /= dims_[a];
       const double face = grid_lo[a] + half_[a] * static_cast<double>(l + 2 * box.lo[a]);
-      below[a - 1] = xi[a] - face;
-      above[a - 1] = face + half_[a] - xi[a];
+      below[a] = xi[a] - face;
+      above[a] = face + half_[a] - xi[a];
     }
-    auto gap = [&](int axis, int d) {
-      const double g = d > 0   ? above[axis] + (d - 1) * half_[axis + 1]
-                       : d < 0 ? below[axis] + (-d - 1) * half_[axis + 1]
+    auto gap2 = [&](int axis, int d) {
+      const double g = d > 0   ? above[axis] + (d - 1) * half_[axis]
+                       : d < 0 ? below[axis] + (-d - 1) * half_[axis]
                                : 0.0;
-      return std::max(g, 0.0);
+      return g > 0 ? g * g : 0.0;
     };
-    bool skip[kRows];
+    std::uint32_t row_begin[kRows], row_end[kRows];
     std::size_t candidates = 0;
     for (int k = 0; k < kRows; ++k) {
-      const double gy = gap(0, row_dy[k]), gz = D == 3 ? gap(1, row_dz[k]) : 0.0;
-      skip[k] = gy * gy + gz * gz >= rc2;
-      if (skip[k]) continue;
-      const std::size_t c = static_cast<std::size_t>(ci + rows[k]);
-      candidates += cell_start_[c + 5] - cell_start_[c];
+      const double g2 = gap2(1, row_dy[k]) + (D == 3 ? gap2(2, row_dz[k]) : 0.0);
+      const long long c = ci + rows[k] + 2;  // the row's half cell level with the particle in x
+      if (g2 >= rc2) {
+        row_begin[k] = row_end[k] = 0;
+        continue;
+      }
+      int first = -2, last = 2;
+      while (first < 0 && gap2(0, first) + g2 >= rc2) ++first;
+      while (last > 0 && gap2(0, last) + g2 >= rc2) --last;
+      row_begin[k] = cell_start_[static_cast<std::size_t>(c + first)];
+      row_end[k] = cell_start_[static_cast<std::size_t>(c + last + 1)];
+      candidates += row_end[k] - row_begin[k];
     }
     if (nbr_.size() < pairs_ + candidates)
       nbr_.resize(std::max(nbr_.size() + nbr_.size() / 4, pairs_ + candidates));  // 25% spare
@@ -156,10 +168,8 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
     const std::uint32_t self = static_cast<std::uint32_t>(i);
     if (fluid) {  // the common case: every neighbour whatever its kind, one store per candidate
       for (int k = 0; k < kRows; ++k) {
-        if (skip[k]) continue;
-        const std::size_t c = static_cast<std::size_t>(ci + rows[k]);
-        const std::uint32_t q_end = cell_start_[c + 5];
-        for (std::uint32_t q = cell_start_[c]; q < q_end; ++q) {
+        const std::uint32_t q_end = row_end[k];
+        for (std::uint32_t q = row_begin[k]; q < q_end; ++q) {
           const std::uint32_t j = cell_items_[q];
           out[m] = j;
           m += static_cast<std::size_t>(((xi - x[j]).squaredNorm() < rc2) & (j != self));
@@ -167,10 +177,8 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
       }
     }
     for (int k = 0; k < kRows && !fluid; ++k) {
-      if (skip[k]) continue;
-      const std::size_t c = static_cast<std::size_t>(ci + rows[k]);
-      const std::uint32_t q_end = cell_start_[c + 5];
-      for (std::uint32_t q = cell_start_[c]; q < q_end; ++q) {
+      const std::uint32_t q_end = row_end[k];
+      for (std::uint32_t q = row_begin[k]; q < q_end; ++q) {
         const std::uint32_t j = cell_items_[q];
         const double r2 = (xi - x[j]).squaredNorm();
         const Kind kj = kind[j];
