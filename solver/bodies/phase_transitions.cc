@@ -107,7 +107,8 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
   }
   const std::string all = comm.allgather(mine);
   std::vector<Record> recs(all.size() / sizeof(Record));
-  std::memcpy(static_cast<void*>(recs.data()), all.data(), recs.size() * sizeof(Record));
+  if (!recs.empty())  // memcpy to a null pointer is undefined even for 0 bytes
+    std::memcpy(static_cast<void*>(recs.data()), all.data(), recs.size() * sizeof(Record));
   std::sort(recs.begin(), recs.end(), [](const Record& a, const Record& b) { return a.id < b.id; });
   regroup(recs, involved, bodies, out);
   if (!out.error.empty()) return out;

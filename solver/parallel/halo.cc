@@ -126,6 +126,7 @@ void Halo<D>::unpack(const std::vector<ColumnBase*>& cols, std::size_t first) {
   std::size_t dst = first;
   for (int r = 0; r < comm_.size(); ++r) {
     const std::size_t n = static_cast<std::size_t>(recv_particles_[static_cast<size_t>(r)]);
+    if (n == 0) continue;  // memcpy from a null pointer is undefined even for 0 bytes
     const std::byte* in = recv_buf_.data() + recv_displ_[static_cast<size_t>(r)];
     for (ColumnBase* c : cols) {
       const std::size_t e = c->elem_bytes();

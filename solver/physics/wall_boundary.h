@@ -58,6 +58,9 @@ class WallBoundary {
   // body: acceleration acting on the fluid; wall_accel: per-particle wall acceleration or
   // nullptr for walls at rest.
   void run(const NeighborList<D>& nl, const Vec<D>& body, const Column<Vec<D>>* wall_accel) {
+    // A scene of bodies and walls without any fluid material (contact only) has no fluid for
+    // the condition to serve, and no fluid whose reference density a lone wall could take.
+    if (first_fluid_ < 0) return;
     for (std::size_t w = 0; w < s_.owned(); ++w) {
       if (s_.kind[w] == Kind::kFluid) continue;
       double sw = 0, sp = 0;
