@@ -38,12 +38,24 @@ double kernel_support_factor(const v1::Case& c) {
   return c.kernel() == v1::WENDLAND_C2 ? 2.0 : 3.0;
 }
 
+double smoothing_length(const v1::Case& c) {
+  return (c.has_smoothing_length_ratio() ? c.smoothing_length_ratio() : 1.0) * c.dx();
+}
+
+double kernel_support_radius(const v1::Case& c) {
+  return kernel_support_factor(c) * smoothing_length(c);
+}
+
+double default_shell_thickness(const v1::Case& c) {
+  return std::ceil(kernel_support_radius(c) / c.dx() - 1e-9) * c.dx();
+}
+
 CaseEstimate estimate_case(const v1::Case& c) {
   CaseEstimate e;
   const int d = c.dimension();
   const double dx = c.dx();
-  const double kappa = kernel_support_factor(c);
-  const double shell = std::ceil(kappa - 1e-9) * dx;
+  const double rc_over_dx = kernel_support_radius(c) / dx;
+  const double shell = default_shell_thickness(c);
   LatticeSpec spec{d, dx, to_point(c.lattice_origin())};
   Aabb clip{to_point(c.domain().lo()), to_point(c.domain().hi())};
   if (d == 2) clip.lo.z() = clip.hi.z() = 0.0;
@@ -76,8 +88,8 @@ CaseEstimate estimate_case(const v1::Case& c) {
     e.fluid_particles += count_lattice_points(Claimed(*s, claimed), spec, clip);
   }
 
-  // Fuchs 2021 eq. (41) at rest (|u_max| = 0), h = dx.
-  const double h = dx;
+  // Fuchs 2021 eq. (41) at rest (|u_max| = 0).
+  const double h = smoothing_length(c);
   const double f = c.time().has_cfl_factor() ? c.time().cfl_factor() : 1.0;
   double dt = std::numeric_limits<double>::infinity();
   auto limit = [&](double v, const char* why) {
@@ -108,8 +120,9 @@ CaseEstimate estimate_case(const v1::Case& c) {
 
   // Storage: particle columns (~40 doubles in 3D) plus a neighbour index per pair, and
   // about 15% ghost copies.
-  const double neighbours = d == 2 ? std::numbers::pi * kappa * kappa
-                                   : 4.0 / 3.0 * std::numbers::pi * kappa * kappa * kappa;
+  const double k = rc_over_dx;
+  const double neighbours =
+      d == 2 ? std::numbers::pi * k * k : 4.0 / 3.0 * std::numbers::pi * k * k * k;
   const double per_particle = (d == 2 ? 200.0 : 280.0) + 4.0 * neighbours;
   e.bytes = 1.15 * e.total() * per_particle;
   return e;

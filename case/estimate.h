@@ -23,7 +23,14 @@ struct CaseEstimate {
 // Requires a case that passed the structural checks of validate_case (shapes compile).
 CaseEstimate estimate_case(const v1::Case& c);
 
-// Cut-off radius over smoothing length for the case's kernel.
+// Cut-off radius over smoothing length for the case's kernel (kappa).
 double kernel_support_factor(const v1::Case& c);
+// h = smoothing_length_ratio * dx (h = dx unless the case says otherwise).
+double smoothing_length(const v1::Case& c);
+// r_c = kappa h.
+double kernel_support_radius(const v1::Case& c);
+// The thickness a `shell` wall gets when it gives none: whole layers of dx covering r_c
+// (Adami 2012 sec. 3).
+double default_shell_thickness(const v1::Case& c);
 
 }  // namespace sph

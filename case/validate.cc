@@ -65,6 +65,10 @@ class Validator {
       return;
     }
     positive(c_.dx(), "dx");
+    if (c_.has_smoothing_length_ratio() &&
+        !(c_.smoothing_length_ratio() >= 1.0 && c_.smoothing_length_ratio() <= 4.0))
+      error("smoothing_length_ratio",
+            "must be between 1 and 4 (got " + num(c_.smoothing_length_ratio()) + ")");
     if (!c_.has_domain()) {
       error("domain", "is required (the bounding box of the computational domain)");
     } else {
@@ -81,7 +85,7 @@ class Validator {
         if (!(hi > lo))
           error(std::string("domain.hi.") + axes[a],
                 "must be greater than domain.lo." + std::string(1, axes[a]));
-        else if (c_.dx() > 0 && (hi - lo) < 2 * kernel_support_factor(c_) * c_.dx())
+        else if (c_.dx() > 0 && (hi - lo) < 2 * kernel_support_radius(c_))
           error(std::string("domain.hi.") + axes[a],
                 "domain is narrower than two kernel supports along " + std::string(1, axes[a]));
       }
@@ -453,9 +457,9 @@ class Validator {
       if (!finite(pt.transition_value())) error(cat(f, "transition_value"), "must be finite");
       non_negative(pt.hysteresis(), cat(f, "hysteresis"));
       if (pt.has_join_radius()) positive(pt.join_radius(), cat(f, "join_radius"));
-      if (pt.has_join_radius() && pt.join_radius() >= kernel_support_factor(c_) * c_.dx())
+      if (pt.has_join_radius() && pt.join_radius() >= kernel_support_radius(c_))
         error(cat(f, "join_radius"), "must be smaller than the kernel support radius (" +
-                                         num(kernel_support_factor(c_) * c_.dx()) + ")");
+                                         num(kernel_support_radius(c_)) + ")");
       if (pt.has_max_bodies() && pt.max_bodies() < c_.bodies_size())
         error(cat(f, "max_bodies"), "must be >= the number of bodies in the case (" +
                                         std::to_string(c_.bodies_size()) + ")");
@@ -493,7 +497,7 @@ class Validator {
             "at most 254 open boundaries (got " + std::to_string(c_.open_boundaries_size()) + ")");
     std::set<std::string> seen;
     auto comp = [](const v1::Vec3& v, int a) { return a == 0 ? v.x() : a == 1 ? v.y() : v.z(); };
-    const double rc = kernel_support_factor(c_) * c_.dx();
+    const double rc = kernel_support_radius(c_);
     for (int i = 0; i < c_.open_boundaries_size(); ++i) {
       const auto& o = c_.open_boundaries(i);
       const std::string f = idx("open_boundaries", i);

@@ -56,7 +56,7 @@ OpenBoundaryZone<D>::OpenBoundaryZone(const v1::Case& c, int index, std::uint16_
     lanes *= static_cast<std::size_t>(count_[a]);
   }
   // Lanes inside a wall hold no buffer particles and carry no flux.
-  const double shell = std::ceil(kernel_support_factor(c) - 1e-9) * c.dx();
+  const double shell = default_shell_thickness(c);
   std::vector<std::unique_ptr<Shape>> walls;
   for (const auto& w : c.walls()) walls.push_back(compile_shape(w.shape(), D, shell));
   const double mid = 0.5 * (lo_[axis_] + hi_[axis_]);

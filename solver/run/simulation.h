@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 
+#include "case/estimate.h"
 #include "case/materials.h"
 #include "case/motion.h"
 #include "solver/bodies/phase_transitions.h"

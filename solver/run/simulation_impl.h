@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 namespace sph {
 
@@ -33,12 +34,11 @@ Simulation<D, K>::Simulation(const v1::Case& c, const Comm& comm, const RunOptio
       mats_(resolve_materials(c)),
       fluids_(make_fluid_table(mats_)),
       dx_(c.dx()),
-      h_(c.dx()),  // h = dx (Fuchs 2021 Remark 8)
-      rc_(K::kSupport * c.dx()),
+      h_(smoothing_length(c)),  // h = dx by default (Fuchs 2021 Remark 8)
+      rc_(K::kSupport * h_),
       wall_volume_(std::pow(c.dx(), D)),
-      kernel_(c.dx()),
-      grid_(detail::to_vec<D>(c.domain().lo()), detail::to_vec<D>(c.domain().hi()),
-            K::kSupport * c.dx(),
+      kernel_(h_),
+      grid_(detail::to_vec<D>(c.domain().lo()), detail::to_vec<D>(c.domain().hi()), rc_,
             [&] {
               std::array<bool, D> p{};
               p[0] = c.periodic_x();
@@ -1001,10 +1001,11 @@ std::map<std::string, std::string> Simulation<D, K>::metadata(const std::string&
   m["code_version"] = code_version();
   m["ranks"] = std::to_string(comm_.size());
   m["dimension"] = std::to_string(D);
-  {  // the shortest text that reads back as dx (to_string would print 2.5e-6 as 0.000003)
+  // The shortest text that reads back as the value (to_string would print 2.5e-6 as 0.000003).
+  for (const auto& [key, value] : {std::pair<const char*, double>{"dx", dx_}, {"h", h_}}) {
     char buf[32];
-    const auto end = std::to_chars(buf, buf + sizeof buf, dx_).ptr;
-    m["dx"] = std::string(buf, end);
+    const auto end = std::to_chars(buf, buf + sizeof buf, value).ptr;
+    m[key] = std::string(buf, end);
   }
   m["kernel"] = K::kSupport == 3.0 ? "quintic_spline" : "wendland_c2";
   std::string units;

@@ -12,7 +12,7 @@ namespace sph {
 SceneBuilder::SceneBuilder(const v1::Case& c, const std::vector<MaterialParams>& materials)
     : c_(c), mats_(materials) {
   const int d = c.dimension();
-  const double shell = std::ceil(kernel_support_factor(c) - 1e-9) * c.dx();
+  const double shell = default_shell_thickness(c);
   for (const auto& w : c.walls()) walls_.push_back(compile_shape(w.shape(), d, shell));
   for (const auto& b : c.bodies()) bodies_.push_back(compile_shape(b.shape(), d, shell));
   for (const auto& f : c.fluids()) fluids_.push_back(compile_shape(f.shape(), d, shell));

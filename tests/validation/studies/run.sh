@@ -26,6 +26,7 @@ studies=(
   "couette|cases/studies/couette_2d.textproto|--study-refine 7"
   "taylor_green|cases/taylor_green_2d.textproto|--study-dx 0.05,0.0354,0.025,0.0177,0.0125"
   "hydrostatic|cases/hydrostatic_tank_2d.textproto|--study-dx 0.05,0.0333,0.025,0.0167"
+  "hydrostatic_steady|cases/studies/hydrostatic_tank_2d.textproto|--study-dx 0.05,0.0333,0.025,0.0167"
   "cooled_block|cases/cooled_block_channel_2d.textproto|--study-refine 4"
   "dam_break|cases/dambreak_martin_moyce_2d.textproto|--study-dx 0.05,0.0354,0.025,0.0177"
   "falling_disk|cases/studies/falling_disk_2d.textproto|--study-refine 4"
