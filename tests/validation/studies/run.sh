@@ -10,7 +10,9 @@
 # Each study is one command (printed before it runs). Results go to $STUDY_OUT (default
 # build/studies/<name>/); running again reuses the levels that are over, so an interrupted run
 # continues where it stopped and the report can be regenerated without running anything
-# (--report-only). --coarse writes to <name>-coarse/ and does not touch docs/.
+# (--report-only). --coarse writes to <name>-coarse/ and does not touch docs/. A study with no
+# results under $STUDY_OUT (--only ran others) keeps its section and summary row as
+# docs/accuracy.md has them.
 set -euo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
