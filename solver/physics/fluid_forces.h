@@ -45,6 +45,11 @@ struct FluidForceInputs {
   Column<Vec<D>>* transport = nullptr;                 // u~ (TVF)
   Column<Vec<D>>* background = nullptr;                // a~ (TVF)
   Column<Vec<D>>* rigid_force = nullptr;  // fluid force on each rigid particle (output)
+  // Filled by FluidForces::run: V_j = m_j / rho_j of every particle (owned and ghosts) and
+  // 2 eta_a eta_b / (eta_a + eta_b) for each pair of fluid materials (row a, column b), so
+  // the pair loop divides only where the pair itself needs it.
+  const double* volume = nullptr;
+  const double* eta_pair = nullptr;
 };
 
 // What fluid particle i receives from dummy (wall or rigid) particle j, times m_i: pressure
@@ -99,9 +104,11 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
   const double* m = s.m.data();
   const Kind* kind = s.kind.data();
   const std::uint16_t* mat = s.material.data();
+  const double* V = in.volume;
   for (std::size_t i = 0; i < s.owned(); ++i) {
     if (kind[i] != Kind::kFluid) continue;
     const FluidConstants& fi = fl[mat[i]];
+    const double* eta_i = in.eta_pair + mat[i] * fl.size();
     const Vec<D> xi = x[i], vi = v[i];
     const double mi = m[i], rhoi = rho[i], pi = p[i];
     const double Vi = mi / rhoi, Vi2 = Vi * Vi;
@@ -119,16 +126,16 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
       const Vec<D> rij = xi - x[j];
       const double r = rij.norm();
       if (r == 0.0) continue;
-      const double dwdr = k.dW(r);
-      const Vec<D> gradW = (dwdr / r) * rij;
+      const double dwdr = k.dW(r), dwdr_r = dwdr / r;
+      const Vec<D> gradW = dwdr_r * rij;
       if (kind[j] == Kind::kFluid) {
-        const double rhoj = rho[j], Vj = m[j] / rhoj;
+        const double rhoj = rho[j], Vj = V[j];
         const double s2 = Vi2 + Vj * Vj;
         const double pt = (rhoj * pi + rhoi * p[j]) / (rhoi + rhoj);
         acc -= (s2 * pt) * gradW;
         if constexpr (kViscous) {
-          const double ej = fl[mat[j]].eta, es = fi.eta + ej;
-          if (es > 0) acc += (s2 * 2.0 * fi.eta * ej / es * dwdr / r) * (vi - v[j]);
+          const double eta_ij = eta_i[mat[j]];
+          if (eta_ij > 0) acc += (s2 * eta_ij * dwdr_r) * (vi - v[j]);
         }
         if constexpr (kTransport) {
           acc_bg -= s2 * gradW;
@@ -212,9 +219,24 @@ class FluidForces {
     coupling_ = pick_coupling(viscous, transport);
   }
   void run(ParticleStore<D>& s, const NeighborList<D>& nl, const K& k,
-           const FluidForceInputs<D>& in) const {
-    fn_(s, nl, k, in);
+           const FluidForceInputs<D>& in) {
+    const auto& fl = *in.fluids;
+    const std::size_t n = s.size(), nf = fl.size();
+    volume_.resize(n);
+    for (std::size_t j = 0; j < n; ++j) volume_[j] = s.m[j] / s.rho[j];
+    eta_pair_.assign(nf * nf, 0.0);
+    for (std::size_t a = 0; a < nf; ++a)
+      for (std::size_t b = 0; b < nf; ++b) {
+        const double es = fl[a].eta + fl[b].eta;
+        if (es > 0) eta_pair_[a * nf + b] = 2.0 * fl[a].eta * fl[b].eta / es;
+      }
+    FluidForceInputs<D> with = in;
+    with.volume = volume_.data();
+    with.eta_pair = eta_pair_.data();
+    fn_(s, nl, k, with);
   }
+  // Bytes of the per-particle scratch (V_j).
+  std::size_t bytes() const { return volume_.capacity() * sizeof(double); }
   // The reaction forces on rigid particles (in.rigid_force).
   void run_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, const K& k,
                     const FluidForceInputs<D>& in) const {
@@ -247,6 +269,7 @@ class FluidForces {
              : &compute_rigid_coupling<D, K, false, false, false>;
   }
   Fn fn_, coupling_;
+  std::vector<double> volume_, eta_pair_;
 };
 
 }  // namespace sph

@@ -94,9 +94,12 @@ class ScalarDiffusion {
         wall_material_(std::move(wall_material)),
         wall_volume_(wall_volume),
         source_(source_per_volume),
-        targets_(walls_.size(), 0.0) {}
+        targets_(walls_.size(), 0.0) {
+    tabulate_pairs();
+  }
 
   Column<double>& values() { return value_; }
+  const Column<double>& values() const { return value_; }
   const std::string& name() const { return value_.name(); }
   // Energy (species mass) per unit mass of a particle of `material` at `value`.
   double content(std::uint16_t material, double value) const {
@@ -141,38 +144,37 @@ class ScalarDiffusion {
   // Advances the owned fluid and rigid particles by dt. `wall_index` tells which wall a wall
   // particle belongs to (ghosts included).
   void run(const NeighborList<D>& nl, double dt, const Column<std::uint16_t>& wall_index) {
-    const std::size_t n = s_.owned();
+    gather(wall_index);
+    const std::size_t n = s_.owned(), nm = mats_.size(), nc = nm + walls_.size();
+    const Vec<D>* x = s_.x.data();
+    const double* value = value_.data();
+    const std::uint16_t* cls = class_.data();
+    const double* vol = volume_.data();
     rate_.assign(n, 0.0);
     for (std::size_t a = 0; a < n; ++a) {
       const Kind ka = s_.kind[a];
       if (ka == Kind::kWall) continue;
-      const DiffusionMaterial& ma = mats_[s_.material[a]];
+      const std::size_t mat_a = s_.material[a];
+      const DiffusionMaterial& ma = mats_[mat_a];
       if (ma.fixed) continue;
       const double rho_a = ka == Kind::kFluid ? s_.rho[a] : ma.density;
+      const double* coef = pair_coefficient_.data() + mat_a * nc;
+      const Vec<D> xa = x[a];
+      const double va = value[a];
       double sum = 0;
       for (const std::uint32_t* bp = nl.begin(a); bp != nl.end(a); ++bp) {
         const std::uint32_t b = *bp;
-        double kb, vb, diff = value_[a] - value_[b];
-        if (s_.kind[b] == Kind::kWall) {
-          const std::uint16_t w = wall_index[b];
-          if (!walls_[w]) continue;  // insulated
-          kb = wall_material_[w] >= 0
-                   ? mats_[static_cast<std::size_t>(wall_material_[w])].coefficient
-                   : ma.coefficient;
-          vb = wall_volume_;
-          const double towards = kMirrorLimit * (value_[a] - targets_[w]);
+        const std::uint16_t cb = cls[b];
+        const double c = coef[cb];  // 0 for insulated walls and non-conducting pairs
+        if (c == 0.0) continue;
+        double diff = va - value[b];
+        if (cb >= nm) {
+          const double towards = kMirrorLimit * (va - targets_[cb - nm]);
           diff = std::clamp(diff, std::min(0.0, towards), std::max(0.0, towards));
-        } else {
-          const DiffusionMaterial& mb = mats_[s_.material[b]];
-          kb = mb.coefficient;
-          vb = s_.kind[b] == Kind::kFluid ? s_.m[b] / s_.rho[b] : s_.m[b] / mb.density;
         }
-        const double ks = ma.coefficient + kb;
-        if (ks <= 0) continue;
-        const Vec<D> rab = s_.x[a] - s_.x[b];
-        const double r = rab.norm();
+        const double r = (xa - x[b]).norm();
         if (r == 0) continue;
-        sum += vb * 4.0 * ma.coefficient * kb / ks * diff / r * k_.dW(r);
+        sum += vol[b] * c * diff / r * k_.dW(r);
       }
       rate_[a] = (sum + source_) / rho_a;  // power per unit mass
     }
@@ -184,6 +186,12 @@ class ScalarDiffusion {
     }
   }
 
+  // Bytes of the unit's per-particle scratch (the value column is counted with the store).
+  std::size_t bytes() const {
+    return rate_.capacity() * sizeof(double) + volume_.capacity() * sizeof(double) +
+           class_.capacity() * sizeof(std::uint16_t);
+  }
+
  private:
   ParticleStore<D>& s_;
   const K& k_;
@@ -192,8 +200,59 @@ class ScalarDiffusion {
   std::vector<std::optional<TimeFunction>> walls_;
   std::vector<int> wall_material_;
   double wall_volume_, source_;
+  // The per-particle inputs of the pair loop, gathered once per step for owned particles and
+  // ghosts, so the loop does no table lookup or division per neighbour beyond the kernel:
+  //   class_[b]  the material of a fluid or rigid particle, nm + k for a particle of wall k;
+  //   volume_[b] V_b (m/rho for fluid, m/rho_material for rigid, the dummy volume for walls).
+  void gather(const Column<std::uint16_t>& wall_index) {
+    const std::size_t n = s_.size(), nm = mats_.size();
+    class_.resize(n);
+    volume_.resize(n);
+    for (std::size_t b = 0; b < n; ++b) {
+      switch (s_.kind[b]) {
+        case Kind::kWall:
+          class_[b] = static_cast<std::uint16_t>(nm + wall_index[b]);
+          volume_[b] = wall_volume_;
+          break;
+        case Kind::kFluid:
+          class_[b] = s_.material[b];
+          volume_[b] = s_.m[b] / s_.rho[b];
+          break;
+        default:
+          class_[b] = s_.material[b];
+          volume_[b] = s_.m[b] / mats_[s_.material[b]].density;
+      }
+    }
+  }
+
+  // 4 k_a k_b/(k_a + k_b) (Fuchs 2021 eq. 28) for material a (row) and class b (column); a
+  // wall conducts with its material's coefficient, or with a's when it has none, and an
+  // insulated wall not at all.
+  void tabulate_pairs() {
+    const std::size_t nm = mats_.size(), nc = nm + walls_.size();
+    pair_coefficient_.assign(nm * nc, 0.0);
+    for (std::size_t a = 0; a < nm; ++a) {
+      const double ka = mats_[a].coefficient;
+      for (std::size_t cb = 0; cb < nc; ++cb) {
+        double kb;
+        if (cb < nm) {
+          kb = mats_[cb].coefficient;
+        } else {
+          const std::size_t w = cb - nm;
+          if (!walls_[w]) continue;
+          kb = wall_material_[w] >= 0
+                   ? mats_[static_cast<std::size_t>(wall_material_[w])].coefficient
+                   : ka;
+        }
+        if (ka + kb > 0) pair_coefficient_[a * nc + cb] = 4.0 * ka * kb / (ka + kb);
+      }
+    }
+  }
+
   std::vector<double> targets_;  // T_D of each Dirichlet wall at the current step
-  std::vector<double> rate_;
+  std::vector<double> pair_coefficient_;
+  std::vector<double> rate_, volume_;
+  std::vector<std::uint16_t> class_;
 };
 
 }  // namespace sph

@@ -1043,6 +1043,10 @@ template <int D, class K>
 std::map<std::string, std::size_t> Simulation<D, K>::memory_by_owner() const {
   auto m = s_.memory_by_owner();
   m["neighbor_search"] += nl_.bytes();
+  if (forces_) m[FluidForces<D, K>::kName] += forces_->bytes();
+  for (const ScalarDiffusion<D, K>* unit :
+       {heat_ ? &*heat_ : nullptr, concentration_ ? &*concentration_ : nullptr})
+    if (unit) m[unit->values().owner()] += unit->bytes();
   return m;
 }
 
