@@ -8,6 +8,7 @@
 
 #include "case/estimate.h"
 #include "case/validate_reference.h"
+#include "case/wall_thickness.h"
 
 namespace sph {
 namespace {
@@ -713,6 +714,8 @@ class Validator {
     if (limits_.max_particles > 0 && e.total() > limits_.max_particles)
       error("dx", "case too large: about " + num(e.total()) + " particles, the limit is " +
                       num(limits_.max_particles) + " (increase dx or shrink the domain)");
+    if (!errors_.empty()) return;
+    for (auto& w : check_wall_thickness(c_)) errors_.push_back(std::move(w));
   }
 
   const v1::Case& c_;

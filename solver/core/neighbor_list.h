@@ -50,9 +50,10 @@ class NeighborList {
   double min_contact_distance() const { return min_contact_; }
   std::size_t bytes() const {
     return (nbr_.capacity() + start_.capacity() + contact_nbr_.capacity() +
-            contact_start_.capacity()) *
+            contact_start_.capacity() + fluid_end_.capacity() + others_.capacity()) *
                sizeof(std::uint32_t) +
-           (cell_start_.capacity() + cell_items_.capacity() + cell_of_.capacity()) *
+           (cell_start_.capacity() + cell_items_.capacity() + cell_of_.capacity() +
+            cell_fluid_.capacity()) *
                sizeof(std::uint32_t);
   }
 

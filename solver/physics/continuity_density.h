@@ -45,6 +45,9 @@ class ContinuityDensity {
       if (s_.kind[i] == Kind::kFluid) s_.rho[i] += dt * rate_[i];
   }
 
+  // Bytes of the per-particle scratch (the rates).
+  std::size_t bytes() const { return rate_.capacity() * sizeof(double); }
+
  private:
   ParticleStore<D>& s_;
   const K& k_;

@@ -1043,7 +1043,9 @@ template <int D, class K>
 std::map<std::string, std::size_t> Simulation<D, K>::memory_by_owner() const {
   auto m = s_.memory_by_owner();
   m["neighbor_search"] += nl_.bytes();
+  // Units' scratch arrays (their columns are counted with the store).
   if (forces_) m[FluidForces<D, K>::kName] += forces_->bytes();
+  if (continuity_) m[ContinuityDensity<D, K>::kName] += continuity_->bytes();
   for (const ScalarDiffusion<D, K>* unit :
        {heat_ ? &*heat_ : nullptr, concentration_ ? &*concentration_ : nullptr})
     if (unit) m[unit->values().owner()] += unit->bytes();

@@ -350,6 +350,43 @@ TEST(CaseValidation, SmoothingLengthRatio) {
   EXPECT_GT(e15.bytes, e1.bytes);
 }
 
+// A wall must hold particles wherever a first-row fluid particle's kernel support reaches
+// into it: lattice distances n dx < r_c, two layers at r_c = 3 dx, five at r_c = 6 dx.
+TEST(CaseValidation, WallsMustCoverTheKernelSupport) {
+  const auto floor = [](double lo_y) {
+    return "walls { name: \"floor\" shape { box { lo { x: 0.5 y: " + std::to_string(lo_y) +
+           " } hi { x: 1.5 y: 0.5 } } } }\n";
+  };
+  auto errs = errors_of(floor(0.3));  // two layers
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  errs = errors_of(floor(0.4));  // one layer
+  EXPECT_TRUE(has_error(errs, "walls[0].shape",
+                        "wall 'floor' is 1 particle layer thick along -y next to the fluid "
+                        "particle at (0.55, 0.55) (and 9 more places): the kernel support "
+                        "reaches past it into empty space; r_c = 0.3 needs 2 layers (0.2 thick)"))
+      << dump(errs);
+  // h = 2 dx: five layers; 0.2 no longer does, 0.5 does.
+  errs = errors_of("smoothing_length_ratio: 2\n" + floor(0.3));
+  EXPECT_TRUE(has_error(errs, "walls[0].shape", "is 2 particle layers thick")) << dump(errs);
+  errs = errors_of("smoothing_length_ratio: 2\n" + floor(0.0));
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  // A one-layer wall across the fluid: fluid on both sides would interact through it.
+  errs = errors_of(
+      R"(walls { name: "baffle" shape { box { lo { x: 1.0 y: 0.5 } hi { x: 1.1 y: 1.5 } } } })");
+  EXPECT_TRUE(has_error(errs, "walls[0].shape", "with fluid behind it at (1.15,")) << dump(errs);
+  // A shell without thickness gets enough layers at any ratio; the domain must hold them (a
+  // shell clipped by the domain is thin again).
+  const std::string shell =
+      R"(walls { name: "tank" shape { shell { inner { box { lo { x: 0.5 y: 0.5 } hi { x: 1.5 y: 1.5 } } } } } })";
+  // r_c = 0.75 at h = 2.5 dx: the shell's eight layers are cut to five by the domain, seven
+  // are needed.
+  errs = errors_of("smoothing_length_ratio: 2.5\n" + shell);
+  EXPECT_TRUE(has_error(errs, "walls[0].shape", "wall 'tank' is 5 particle layers thick"))
+      << dump(errs);
+  errs = errors_of("smoothing_length_ratio: 1.5\n" + shell);
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+}
+
 TEST(CaseValidation, EmptyPlacementIsAnError) {
   auto c = parse_case_text(kBase);
   c.mutable_fluids(0)->mutable_shape()->mutable_box()->mutable_lo()->set_x(5);
