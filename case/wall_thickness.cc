@@ -188,8 +188,9 @@ std::vector<FieldError> check_wall_thickness(const v1::Case& c) {
                    : ": the kernel support reaches past it into empty space";
     m += "; r_c = " + number_text(rc) + " needs " + std::to_string(needed) + " layers (" +
          number_text(needed * dx) +
-         " thick) behind the first fluid row: make the wall thicker, give it as a `shell` "
-         "without `thickness` (ceil(r_c/dx) layers), or lower smoothing_length_ratio";
+         " thick) behind the first fluid row: make the wall thicker (the domain bounds cut "
+         "walls, so the domain must hold it too), give it as a `shell` without `thickness` "
+         "(ceil(r_c/dx) layers), or lower smoothing_length_ratio";
     errors.push_back({"walls[" + std::to_string(k) + "].shape", m});
   }
   return errors;
