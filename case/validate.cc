@@ -458,6 +458,13 @@ class Validator {
       if (!finite(pt.transition_value())) error(cat(f, "transition_value"), "must be finite");
       non_negative(pt.hysteresis(), cat(f, "hysteresis"));
       if (pt.has_join_radius()) positive(pt.join_radius(), cat(f, "join_radius"));
+      // Particles of a body link when closer than the join radius; at dx or less lattice
+      // neighbours do not, and every body a transition touches falls apart into single particles.
+      if (pt.has_join_radius() && pt.join_radius() > 0 && pt.join_radius() <= 1.01 * c_.dx())
+        error(cat(f, "join_radius"),
+              "must be larger than dx (" + num(c_.dx()) +
+                  "): particles one lattice spacing apart must link, or every body a transition "
+                  "touches breaks into single particles (default 1.5 dx)");
       if (pt.has_join_radius() && pt.join_radius() >= kernel_support_radius(c_))
         error(cat(f, "join_radius"), "must be smaller than the kernel support radius (" +
                                          num(kernel_support_radius(c_)) + ")");

@@ -98,11 +98,12 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
 
   // 3. Gather the particles of the involved bodies and the new rigid particles.
   std::string mine;
+  const auto& fluid_force = bodies.fluid_force();
   for (std::size_t i = 0; i < s.owned(); ++i) {
     if (s.kind[i] != Kind::kRigid) continue;
     const std::int32_t k = body[i];
     if (k >= 0 && !involved[static_cast<std::size_t>(k)]) continue;
-    Record rec{s.id[i], k, s.m[i], s.x[i], s.v[i]};
+    Record rec{s.id[i], k, s.m[i], s.x[i], s.v[i], k >= 0 ? fluid_force[i] : Vec<D>::Zero()};
     mine.append(reinterpret_cast<const char*>(&rec), sizeof rec);
   }
   const std::string all = comm.allgather(mine);
@@ -237,19 +238,23 @@ void PhaseTransitions<D>::regroup(std::vector<Record>& recs,
     }
     // Mass properties of the piece (eqs. 20-23 with Remark 13), in id order.
     double M = 0;
-    Vec<D> mx = Vec<D>::Zero(), P = Vec<D>::Zero();
+    Vec<D> mx = Vec<D>::Zero(), P = Vec<D>::Zero(), F = Vec<D>::Zero();
+    std::map<std::int32_t, double> taken;  // mass taken from each old body
     for (const std::size_t a : members) {
       M += recs[a].m;
       mx += recs[a].m * recs[a].x;
       P += recs[a].m * recs[a].v;
+      F += recs[a].f;
+      if (recs[a].old_body >= 0) taken[recs[a].old_body] += recs[a].m;
     }
     const Vec<D> c = mx / M;
     Eigen::Matrix<double, RigidBodies<D>::A, RigidBodies<D>::A> Iw;
     Iw.setZero();
-    AngVec<D> L = AngVec<D>::Zero();
+    AngVec<D> L = AngVec<D>::Zero(), T = AngVec<D>::Zero();
     for (const std::size_t a : members) {
       const Vec<D> r = recs[a].x - c;
       const double m = recs[a].m;
+      T += moment<D>(r, recs[a].f);
       if constexpr (D == 2) {
         Iw(0, 0) += m * (r.squaredNorm() + self);
       } else {
@@ -284,9 +289,23 @@ void PhaseTransitions<D>::regroup(std::vector<Record>& recs,
       else
         nbody.omega = Iw.ldlt().solve(L);
     }
-    // A prescribed path moves the centre of mass from com0: shift it with the centre.
-    nbody.com0 += c - nbody.com;
+    // A prescribed path places the centre at center(t) + Rot(t) (com0 - center0) (MotionPath),
+    // and a prescribed body's orientation is Rot(t): the new centre's com0 is the old one
+    // shifted by the move taken back into the path's frame at t = 0.
+    nbody.com0 += R.transpose() * (c - nbody.com);
     nbody.com = c;
+    nbody.fluid_force = F;
+    nbody.fluid_torque = T;
+    nbody.contact_force.setZero();
+    nbody.contact_torque.setZero();
+    nbody.contacts = 0;
+    nbody.mean_contact_force.setZero();
+    nbody.mean_contact_torque.setZero();
+    for (const auto& [k, m] : taken) {
+      const RigidBody<D>& o = old[static_cast<std::size_t>(k)];
+      nbody.mean_contact_force += (m / o.mass) * o.mean_contact_force;
+      nbody.mean_contact_torque += (m / o.mass) * o.mean_contact_torque;
+    }
     if constexpr (D == 3) nbody.angular_momentum = Iw * nbody.omega;
     bs[static_cast<std::size_t>(slot)] = nbody;
     for (const std::size_t a : members) slot_of_record[a] = slot;

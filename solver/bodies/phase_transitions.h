@@ -23,6 +23,17 @@
 // or new body gets the total linear and angular momentum of what it is made of. Melted
 // particles carry their momentum into the fluid, so momentum is conserved throughout.
 //
+// Forces: the next step's first half kick (eq. 31) uses the fluid force and torque of the
+// step that just ended. A rebuilt body gets the sum of its own particles' fluid forces
+// (eq. 19) and their moments about its new centre (eqs. 24-26), not its parent's: a piece
+// broken off a body would otherwise be kicked with the whole body's force over its own small
+// mass. A particle frozen this step brings no fluid force (its force as a fluid particle
+// mixes in rigid and wall neighbours), one step's half kick of one particle's force. The
+// contact force of a rebuilt body is zero here: the simulation evaluates contact again with
+// the new bodies (SpringDashpotContact::refresh) after searching neighbours again. Its mean
+// contact force over the last step (what the fluid's wall condition sees, RigidBody) is
+// each parent's in proportion to the mass the piece took from it.
+//
 // Parallel: the particles taking part in a regrouping are gathered on every rank (ordered by
 // id) and every rank runs the same union-find, so the body table stays replicated and results
 // do not depend on the rank count. Only steps with a transition pay for the gather, and only
@@ -86,6 +97,7 @@ class PhaseTransitions {
     std::int32_t old_body;  // -1: solidified this step
     double m;
     Vec<D> x, v;
+    Vec<D> f;  // fluid force on the particle (eq. 19) of this step; zero for a new one
   };
   // involved[k] != 0 for the bodies taking part (the first bodies().size() entries).
   void regroup(std::vector<Record>& recs, const std::vector<std::int64_t>& involved,

@@ -76,6 +76,13 @@ class SpringDashpotContact {
   // Contact forces for the current body states, reduced into the bodies (contact_force,
   // contact_torque, contacts). Collective. h > 0 advances the friction history by h.
   void evaluate(const NeighborList<D>& nl, const Comm& comm, double h = 0);
+  // Contact forces of the bodies as they are now, after the body table changed (phase
+  // transitions rebuild bodies between steps; the next step's first contact kick uses these).
+  // The friction history is kept as it is. Collective.
+  void refresh(const NeighborList<D>& nl, const Comm& comm) {
+    snapshot_step_start();
+    evaluate(nl, comm, 0.0);
+  }
   // Sends the friction history of particles that migrated to their new ranks. Collective.
   void migrate_history(Halo<D>& halo);
   // Keeps only the history of owned particles (after a resume gave every rank all of it).

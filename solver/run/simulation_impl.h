@@ -320,14 +320,28 @@ void Simulation<D, K>::build_phase_transitions() {
 template <int D, class K>
 std::string Simulation<D, K>::apply_phase_transitions() {
   if (!phase_) return {};
-  Timer tm(timer(PhaseTransitions<D>::kName));
-  const auto out =
-      phase_->run(s_, nl_, *bodies_, heat_ ? &heat_->values() : nullptr,
-                  concentration_ ? &concentration_->values() : nullptr, transport_, comm_);
+  typename PhaseTransitions<D>::Outcome out;
+  {
+    Timer tm(timer(PhaseTransitions<D>::kName));
+    out = phase_->run(s_, nl_, *bodies_, heat_ ? &heat_->values() : nullptr,
+                      concentration_ ? &concentration_->values() : nullptr, transport_, comm_);
+  }
   if (!out.error.empty()) {
     char buf[120];
     std::snprintf(buf, sizeof buf, " at step %lld, t = %.9g", static_cast<long long>(step_), t_);
     return out.error + buf;
+  }
+  if (out.melted + out.solidified > 0) {  // all ranks: the counts are global
+    // Particles changed kind and body after this step's search: the ghosts and the contact
+    // candidates are those of before (a melted particle would push its old neighbours as a
+    // wall, a merged body would keep contacts within itself), so search again and evaluate
+    // the rebuilt bodies' contact forces for the next step's first contact kick.
+    exchange_and_search();
+    if (contact_) {
+      Timer tc(timer(SpringDashpotContact<D>::kName));
+      contact_->refresh(nl_, comm_);
+    }
+    bodies_->update_accelerations(t_);  // the rebuilt bodies' own forces
   }
   return {};
 }
@@ -1031,10 +1045,14 @@ void Simulation<D, K>::maybe_rebalance() {
   };
   imbalance_ = imbalance();
   if (comm_.size() > 1 && imbalance_ > 1.05) {
-    Timer tm(timer("halo_exchange"));
-    s_.drop_ghosts();
-    decompose_by_histogram();
-    migrate();
+    {
+      Timer tm(timer("halo_exchange"));
+      s_.drop_ghosts();
+      decompose_by_histogram();
+    }
+    // Migration reorders the owned rows and the ghosts change: the next step's contact drift
+    // and the probes read the neighbour list before that step searches again.
+    exchange_and_search();
     imbalance_ = imbalance();
   }
 }

@@ -266,6 +266,13 @@ phase_transitions { solid_material: "water" fluid_material: "s" driver: TEMPERAT
   EXPECT_TRUE(has_error(errs, "phase_transitions[0].solid_material", "expected SOLID"))
       << dump(errs);
   EXPECT_TRUE(has_error(errs, "phase_transitions[0].join_radius", "kernel support")) << dump(errs);
+  // A join radius of dx links no lattice neighbours: bodies would shatter at the first transition.
+  errs = errors_of(R"(materials { name: "s" phase: SOLID density: 2 }
+thermal { }
+phase_transitions { solid_material: "s" fluid_material: "water" driver: TEMPERATURE
+                    join_radius: 0.1 })");
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].join_radius", "must be larger than dx"))
+      << dump(errs);
 }
 
 TEST(CaseValidation, RigidBodiesAndContact) {

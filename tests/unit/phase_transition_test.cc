@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "case/load.h"
 #include "solver/bodies/phase_transitions.h"
@@ -130,6 +131,86 @@ TEST(PhaseTransition, BodyMeltedThroughBecomesTwoBodies) {
         1e-14);
   }
   EXPECT_NEAR((f.momentum() - p0).norm(), 0.0, 1e-12 * p0.norm());
+}
+
+TEST(PhaseTransition, PiecesOfABodyGetTheirOwnForces) {
+  // The dumbbell of the test above with a fluid force on every particle (uneven, so that it
+  // has a moment) and a contact force on the body. After the bar melts, each piece's fluid
+  // force and torque are those of its own particles about its own centre (eqs. 24-26): the
+  // next step's first half kick must not push a piece with its parent's whole force. The
+  // contact force is evaluated again by the simulation; the mean contact force the fluid's
+  // wall condition sees is split by mass.
+  Fixture f(scene(R"(bodies { name: "dumbbell" material: "solid"
+                       shape { union {
+                         shapes { box { lo { x: -1.5 y: -0.5 } hi { x: -0.5 y: 0.5 } } }
+                         shapes { box { lo { x: 0.5 y: -0.5 } hi { x: 1.5 y: 0.5 } } }
+                         shapes { box { lo { x: -0.6 y: -0.1 } hi { x: 0.6 y: 0.1 } } } } } })"),
+            Vec<2>(0.2, 0), 1.0);
+  auto& force = f.bodies->fluid_force();
+  RigidBody<2>& whole = f.bodies->bodies()[0];
+  for (std::size_t i = 0; i < f.s.owned(); ++i) {
+    force[i] = Vec<2>(1.0 + 0.3 * f.s.x[i][0], -0.5 + 0.2 * f.s.x[i][1] * f.s.x[i][0]);
+    whole.fluid_force += force[i];
+    whole.fluid_torque += moment<2>(f.s.x[i] - whole.com, force[i]);
+  }
+  whole.contact_force = Vec<2>(3, 4);
+  whole.contacts = 7;
+  whole.mean_contact_force = Vec<2>(0, 10);
+  const RigidBody<2> before = whole;  // `whole` is slot 0, which the first piece takes
+  for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = std::abs(f.s.x[i][0]) < 0.45 ? 100 : 0;
+  PhaseTransitions<2> pt({rule(50, 0, false)}, 8, 0.1);
+  ASSERT_TRUE(f.run(pt).error.empty());
+  const auto& bs = f.bodies->bodies();
+  ASSERT_EQ(bs.size(), 2u);
+  for (std::size_t k = 0; k < bs.size(); ++k) {
+    Vec<2> F = Vec<2>::Zero();
+    AngVec<2> T = AngVec<2>::Zero();
+    for (std::size_t i = 0; i < f.s.owned(); ++i)
+      if (f.s.kind[i] == Kind::kRigid && f.bodies->body_index()[i] == static_cast<int>(k)) {
+        F += force[i];
+        T += moment<2>(f.s.x[i] - bs[k].com, force[i]);
+      }
+    EXPECT_NEAR((bs[k].fluid_force - F).norm(), 0.0, 1e-12 * F.norm()) << "body " << k;
+    EXPECT_NEAR(bs[k].fluid_torque[0], T[0], 1e-12 * std::abs(T[0])) << "body " << k;
+    EXPECT_LT(bs[k].fluid_force.norm(), 0.7 * before.fluid_force.norm()) << "body " << k;
+    EXPECT_EQ(bs[k].contact_force.norm(), 0.0);
+    EXPECT_EQ(bs[k].contacts, 0);
+    EXPECT_NEAR(bs[k].mean_contact_force[1], 10 * bs[k].mass / before.mass, 1e-12);
+  }
+}
+
+TEST(PhaseTransition, PrescribedRotatingBodyStaysOnItsPath) {
+  // A body turning about the origin while it translates; half of it melts at t = 0.4 (turned
+  // by 0.8 rad). The piece left must go on where the path takes its particles: com0 moves by
+  // the centre's shift taken back into the path's frame at t = 0.
+  Fixture f(scene(R"(bodies { name: "arm" material: "solid" motion_type: PRESCRIBED
+                       motion { velocity_x { constant: 0.5 } angular_velocity { constant: 2 } }
+                       shape { box { lo { x: 0.3 y: -0.3 } hi { x: 1.9 y: 0.3 } } } })"),
+            Vec<2>(0, 0), 0.0);
+  std::map<ParticleId, Vec<2>> x0;
+  for (std::size_t i = 0; i < f.s.owned(); ++i) x0[f.s.id[i]] = f.s.x[i];
+  const auto& path = f.bodies->bodies()[0].path;
+  auto on_path = [&](const Vec<2>& x, double t) {
+    const Point3 p = path.position(Point3(x[0], x[1], 0), t);
+    return Vec<2>(p[0], p[1]);
+  };
+  f.bodies->drift(0.4, 0.4);
+  f.bodies->place_owned_particles();
+  for (std::size_t i = 0; i < f.s.owned(); ++i)
+    ASSERT_NEAR((f.s.x[i] - on_path(x0[f.s.id[i]], 0.4)).norm(), 0.0, 1e-12);
+  for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = x0[f.s.id[i]][0] > 1.1 ? 100 : 0;
+  PhaseTransitions<2> pt({rule(50, 0, false)}, 8, 0.1);
+  ASSERT_TRUE(f.run(pt).error.empty());
+  const RigidBody<2>& b = f.bodies->bodies()[0];
+  ASSERT_TRUE(b.active());
+  EXPECT_NEAR((on_path(b.com0, 0.4) - b.com).norm(), 0.0, 1e-12);
+  f.bodies->drift(0.3, 0.7);
+  f.bodies->place_owned_particles();
+  double worst = 0;
+  for (std::size_t i = 0; i < f.s.owned(); ++i)
+    if (f.s.kind[i] == Kind::kRigid)
+      worst = std::max(worst, (f.s.x[i] - on_path(x0[f.s.id[i]], 0.7)).norm());
+  EXPECT_LT(worst, 1e-12);
 }
 
 TEST(PhaseTransition, LiquidFreezesOntoABodyOrIntoANewOne) {

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <string>
 
 #include "case/load.h"
 #include "case/materials.h"
@@ -111,6 +113,34 @@ TEST(RigidBody, TorqueFreeRotationConservesMomentumAndEnergy) {
   EXPECT_LT(dl, 1e-12);
   EXPECT_LT(worst_e, 1e-5);
   EXPECT_GT((b.omega - Eigen::Vector3d(1.0, 0.3, 2.0)).norm(), 0.1);  // it did precess
+}
+
+TEST(RigidBody, CheckpointStateRestoresTheBody) {
+  // Everything the next step reads comes back from the checkpoint state, including the count
+  // of touching pairs that bounds the dashpot's sub-step (SpringDashpotContact).
+  auto c = body_case(3, 0.1, "ball { center { x: 0 y: 0 z: 0 } radius: 0.3 }");
+  ParticleStore<3> s, s2;
+  auto bodies = bodies_of<3>(c, s);
+  RigidBody<3>& b = bodies->bodies()[0];
+  b.velocity = Eigen::Vector3d(0.1, -0.2, 0.3);
+  b.omega = Eigen::Vector3d(1.0, 0.3, 2.0);
+  b.angular_momentum = b.world_inertia_times(b.omega);
+  b.fluid_force = Eigen::Vector3d(1, 2, 3);
+  b.contact_force = Eigen::Vector3d(-4, 5, -6);
+  b.contacts = 17;
+  bodies->drift(0.1, 0.1);
+  std::map<std::string, double> state;
+  bodies->save(state);
+  auto restored = bodies_of<3>(c, s2);
+  restored->load(state);
+  const RigidBody<3>& r = restored->bodies()[0];
+  EXPECT_EQ(r.com, b.com);
+  EXPECT_EQ(r.velocity, b.velocity);
+  EXPECT_EQ(r.angular_momentum, b.angular_momentum);
+  EXPECT_EQ(r.orientation.q.coeffs(), b.orientation.q.coeffs());
+  EXPECT_EQ(r.fluid_force, b.fluid_force);
+  EXPECT_EQ(r.contact_force, b.contact_force);
+  EXPECT_EQ(r.contacts, 17);
 }
 
 TEST(RigidBody, ConstantTorqueGivesTheExactAngle) {

@@ -15,7 +15,9 @@
 #include <cstdio>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "case/load.h"
 #include "tests/support/result_reader.h"
 #include "tests/support/test_cases.h"
 
@@ -71,6 +73,66 @@ TEST(PhaseChange, GastricBolusesDissolveConservingMass) {
   for (std::size_t k = body_mass.size() - slots; k < body_mass.size(); ++k)
     if (std::isfinite(body_mass[k])) sum += body_mass[k];
   EXPECT_NEAR(sum, rigid_end, 1e-9 * rigid0);
+}
+
+TEST(PhaseChange, ABodyThatMeltsLeavesNoContactBehind) {
+  // Grain B moves into grain A. Solid, A holds B off through the contact in every step. Above
+  // its melting point, A turns to liquid at the end of the first step, and from then on B has
+  // no body to touch: the contact must not push it off the particles that were A's (liquid
+  // now), as it would with the contact candidates of the search made before the transition.
+  // Gas and metal of the 2D powder scene; the grains' facing rows are one dx apart.
+  auto scene = [](double temperature_a) {
+    return parse_case_text(R"(dimension: 2 dx: 0.25
+      domain { lo { x: -1 y: -1 } hi { x: 7 y: 5 } }
+      materials { name: "gas" density: 0.1 eos { reference_pressure: 16e6 }
+                  kinematic_viscosity: 100 transport_background_pressure: 16e6
+                  heat_capacity: 0.01 thermal_conductivity: 0.1 }
+      materials { name: "liquid_metal" density: 1 eos { reference_pressure: 16e6 }
+                  kinematic_viscosity: 100 transport_background_pressure: 16e6 heat_capacity: 1
+                  thermal_conductivity: 10 }
+      materials { name: "solid_metal" phase: SOLID density: 1 heat_capacity: 1
+                  thermal_conductivity: 10 }
+      fluids { name: "gas" material: "gas" initial_temperature: 50
+               shape { box { lo { x: 0 y: 0 } hi { x: 6 y: 4 } } } }
+      walls { name: "box" shape { shell { inner { box { lo { x: 0 y: 0 } hi { x: 6 y: 4 } } } } } }
+      bodies { name: "A" material: "solid_metal" initial_temperature: )" +
+                           std::to_string(temperature_a) + R"(
+               shape { ball { center { x: 2.125 y: 2 } radius: 0.8 } } }
+      bodies { name: "B" material: "solid_metal" initial_temperature: 25
+               initial_velocity { x: -1 } shape { ball { center { x: 3.9 y: 2 } radius: 0.8 } } }
+      contact { stiffness: 1e8 damping: 1e2 }
+      thermal { initial_temperature: 50 }
+      phase_transitions { solid_material: "solid_metal" fluid_material: "liquid_metal"
+                          driver: TEMPERATURE transition_value: 50 hysteresis: 2 reversible: true }
+      fluid_model { transport_velocity: true }
+      time { end_time: 1 max_steps: 6 }
+      output { interval: 0 series_interval: 1e-12 })");
+  };
+  // B's touching pairs at t = 0 and after each of the six steps, and the melted count.
+  auto run = [&](double temperature_a, const std::string& name) {
+    const std::string out = test::output_dir(name);
+    const RunOutcome r = test::run(scene(temperature_a), out);
+    EXPECT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    test::ResultReader rr(out + "/result.h5");
+    const auto contacts = rr.series("bodies/contacts");
+    const auto melted = rr.series("phase/melted");
+    const std::size_t samples = melted.size(), slots = contacts.size() / samples;
+    std::vector<double> b;
+    for (std::size_t k = 0; k < samples; ++k) b.push_back(contacts[k * slots + 1]);
+    std::printf("A at %g: grain B's touching pairs per step:", temperature_a);
+    for (const double n : b) std::printf(" %g", n);
+    std::printf("; melted %g\n", melted.back());
+    return std::make_pair(b, melted);
+  };
+  const auto [solid, none] = run(25, "phase_contact_solid");
+  const auto [melting, melted] = run(60, "phase_contact_melting");
+  ASSERT_EQ(solid.size(), 7u);
+  ASSERT_EQ(melting.size(), 7u);
+  EXPECT_EQ(none.back(), 0.0);
+  for (std::size_t k = 1; k < solid.size(); ++k) EXPECT_GT(solid[k], 0.0) << "step " << k;
+  EXPECT_GT(melted[1], 20.0);  // all of A (about 32 particles) melted at the end of step 1
+  EXPECT_EQ(melted.back(), melted[1]);
+  for (std::size_t k = 1; k < melting.size(); ++k) EXPECT_EQ(melting[k], 0.0) << "step " << k;
 }
 
 // The first 0.008 of the 2D powder scene at its coarse dx = 0.25 (9.3k particles, 1.6k steps),

@@ -65,7 +65,8 @@ StefanRun run_stefan(double dx, double latent, double interval, double t_end) {
                            num(t_end) + R"( }
       time { end_time: )" + num(t_end) +
                            " }";
-  const std::string out = test::output_dir("stefan");
+  // One folder per run: ctest -j runs the tests using this at once.
+  const std::string out = test::output_dir("stefan_dx" + num(dx) + "_L" + num(latent));
   const RunOutcome r = test::run(parse_case_text(text), out);
   EXPECT_EQ(r.status, RunStatus::kCompleted) << r.message;
   test::ResultReader rr(out + "/result.h5");
@@ -145,7 +146,7 @@ TEST(Stefan, WithoutLatentHeatTheFrontIsTheMeltingIsotherm) {
 // conserved to round-off by the symmetric pair fluxes (both phases have c_p = 1, so h does not
 // jump when a particle changes phase), and no temperature leaves [min, max] of the initial
 // values. Returns the melted and solidified particle counts.
-std::pair<double, double> closed_strip(double t_liquid, double t_solid) {
+std::pair<double, double> closed_strip(double t_liquid, double t_solid, const std::string& name) {
   const double dx = 0.02, pad = 3 * dx;
   const std::string text = "dimension: 2 dx: " + num(dx) + " domain { lo { x: " + num(-1 - pad) +
                            " y: 0 } hi { x: " + num(1 + pad) + " y: " + num(8 * dx) +
@@ -167,7 +168,8 @@ std::pair<double, double> closed_strip(double t_liquid, double t_solid) {
                           latent_heat: 0.5 latent_heat_interval: 0.2 }
       output { interval: 0.2 series_interval: 0.01 }
       time { end_time: 0.2 })";
-  const std::string out = test::output_dir("stefan_closed");
+  // Its own folder per test: ctest -j runs the two at once.
+  const std::string out = test::output_dir(name);
   const RunOutcome r = test::run(parse_case_text(text), out);
   EXPECT_EQ(r.status, RunStatus::kCompleted) << r.message;
   test::ResultReader rr(out + "/result.h5");
@@ -194,14 +196,14 @@ std::pair<double, double> closed_strip(double t_liquid, double t_solid) {
 
 TEST(Stefan, LatentHeatIsConservedThroughMelting) {
   // Contact temperature 0.4 (equal effusivities): the solid melts from the interface.
-  const auto [melted, frozen] = closed_strip(1.0, -0.2);
+  const auto [melted, frozen] = closed_strip(1.0, -0.2, "stefan_closed_melting");
   EXPECT_GT(melted, 0);
   EXPECT_EQ(frozen, 0);
 }
 
 TEST(Stefan, LatentHeatIsConservedThroughFreezing) {
   // Contact temperature -0.4: the liquid freezes onto the body.
-  const auto [melted, frozen] = closed_strip(0.2, -1.0);
+  const auto [melted, frozen] = closed_strip(0.2, -1.0, "stefan_closed_freezing");
   EXPECT_EQ(melted, 0);
   EXPECT_GT(frozen, 0);
 }
