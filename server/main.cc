@@ -17,6 +17,7 @@
 #include "server/clock.h"
 #include "server/common/auth_token.h"
 #include "server/common/log.h"
+#include "server/common/message_limits.h"
 #include "server/config.h"
 #include "server/events/event_feed.h"
 #include "server/lease_reaper.h"
@@ -72,7 +73,7 @@ int run(const ServerConfig& config) {
   builder.AddListeningPort(config.address, grpc::InsecureServerCredentials(), &port);
   builder.RegisterService(&jobs);
   builder.RegisterService(&workers);
-  builder.SetMaxReceiveMessageSize(64 << 20);  // cases with inlined point sets can be large
+  builder.SetMaxReceiveMessageSize(sph::service::kMaxMessageBytes);  // inlined point sets
   std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
   if (!server || port == 0) {
     sph::service::log_line("cannot listen on %s", config.address.c_str());

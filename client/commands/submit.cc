@@ -14,6 +14,7 @@
 #include "render/job_text.h"
 #include "render/json.h"
 #include "server/common/job_state.h"
+#include "server/common/message_limits.h"
 
 namespace sph::ctl {
 namespace {
@@ -71,6 +72,15 @@ int submit_job(const GlobalOptions& g, const v1::Case& c, const std::string& pat
   v1::SubmitRequest req;
   req.set_request_id(request_id.empty() ? random_request_id() : request_id);
   req.set_case_text(case_to_text(c));
+  // The server would refuse it too, but only after sending it (service/message_limits.h).
+  if (req.case_text().size() > service::kMaxCaseTextBytes) {
+    std::fprintf(stderr,
+                 "sphctl: %s: case_text: the case is %zu MiB with its point and reference data "
+                 "inlined; the service takes at most %zu MiB: make point sets coarser or split "
+                 "the case\n",
+                 path.c_str(), req.case_text().size() >> 20, service::kMaxCaseTextBytes >> 20);
+    return kInvalidCase;
+  }
   if (study != nullptr) *req.mutable_study() = *study;
   v1::SubmitResponse resp;
   grpc::Status status;

@@ -13,6 +13,7 @@
 #include "server/clock.h"
 #include "server/common/job_state.h"
 #include "server/common/log.h"
+#include "server/common/message_limits.h"
 #include "server/common/sha256.h"
 #include "server/store/job_ids.h"
 
@@ -80,6 +81,15 @@ grpc::Status JobServiceImpl::Submit(grpc::ServerContext* context, const v1::Subm
     job.request_id = request->request_id();
     job.name = c.name();
     job.case_text = case_to_text(c);
+    if (job.case_text.size() > service::kMaxCaseTextBytes) {
+      context->AddTrailingMetadata("sph-invalid-field", "case_text");
+      return invalid_argument(
+          "case_text", "is " + std::to_string(job.case_text.size() >> 20) +
+                           " MiB as stored; the limit is " +
+                           std::to_string(service::kMaxCaseTextBytes >> 20) +
+                           " MiB, so that a worker can receive it: make point sets coarser or "
+                           "split the case");
+    }
     job.estimated_particles = estimate_case(c).total();
     service::Sha256 h;
     h.update(job.case_text);
@@ -163,6 +173,10 @@ grpc::Status JobServiceImpl::WatchJob(grpc::ServerContext* context,
     EventFeed::Subscription sub(feed_, id);
     std::int64_t last = request->after_sequence();
     while (true) {
+      // The state is read before the events: a job that finishes between the two reads has
+      // its last events read here, and is found finished only on the next round, after they
+      // were sent.
+      const bool finished = service::is_terminal(store_.state(id));
       const auto events = store_.events_after(id, last, kEventBatch);
       for (const auto& e : events) {
         if (!writer->Write(e)) return grpc::Status(grpc::StatusCode::CANCELLED, "client went away");
@@ -171,7 +185,7 @@ grpc::Status JobServiceImpl::WatchJob(grpc::ServerContext* context,
       }
       if (!events.empty()) continue;
       // Nothing newer: a finished job has nothing more to say (the terminal event is last).
-      if (service::is_terminal(store_.state(id))) return grpc::Status::OK;
+      if (finished) return grpc::Status::OK;
       if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "cancelled");
       if (feed_.shutting_down())
         return grpc::Status(

@@ -139,6 +139,26 @@ TEST(ServiceApi, BadCasesAreRejectedNamingTheFieldAndNothingIsStored) {
   EXPECT_EQ(h.submit_text(ok).state(), v1::JOB_STATE_QUEUED);
 }
 
+TEST(ServiceApi, ALargeCaseReachesItsPoolAndATooLargeOneIsRejectedNamingCaseText) {
+  // One message limit on the server and on the clients' channels (server/common/
+  // message_limits.h): a case the server accepts must also fit the Claim that hands it to a
+  // pool. A 20 MiB case (a long description stands in for inlined point sets) was accepted
+  // and then could not be claimed while the clients' limit was 16 MiB.
+  ServiceHarness h;
+  h.start_server();
+  auto with_description = [](std::size_t bytes) {
+    return std::regex_replace(small_case(), std::regex("description: \"[^\"]*\""),
+                              "description: \"" + std::string(bytes, 'x') + "\"");
+  };
+  const v1::Job big = h.submit_text(with_description(20u << 20));
+  EXPECT_EQ(big.state(), v1::JOB_STATE_QUEUED);
+  const v1::ClaimResponse c = claim(h);
+  EXPECT_EQ(c.job_id(), big.id());
+  EXPECT_GT(c.case_text().size(), 20u << 20);
+  expect_rejected(h, with_description(50u << 20), "case_text: is 50 MiB");
+  EXPECT_EQ(all_jobs(h).size(), 1u) << "the rejected case was stored";
+}
+
 TEST(ServiceApi, WrongOrMissingTokenIsUnauthenticatedOnEveryService) {
   ServiceHarness h;
   h.start_server(ServerSettings().with_token("s3cret-token"));

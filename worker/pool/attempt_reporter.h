@@ -38,7 +38,8 @@ class AttemptReporter {
   // Polled by the solver once per step; doubles as its heartbeat.
   bool should_stop();
 
-  // Stops the thread after a last report of anything still pending.
+  // Stops the thread without a last report: the Finish that follows carries the newest
+  // progress and checkpoint (last_progress, last_checkpoint).
   void stop();
 
   bool lost() const { return lost_.load(); }

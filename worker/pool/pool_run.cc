@@ -249,8 +249,8 @@ void run_attempt(const v1::ClaimResponse& claim, const PoolOptions& o, ServerLin
                                          : run_case(c, MPI_COMM_WORLD, opt);
   if (rank != 0) return;
 
-  reporter->stop();
-  if (reporter->lost()) return;  // another attempt owns the job now
+  // The reporter renews the lease until the Finish is ready: hashing large result files can
+  // take longer than a lease, and an expired lease would throw the finished run away.
   service::log_line("%s attempt %d: %s%s%s", claim.job_id().c_str(), claim.attempt(),
                     summary(r, ranks).c_str(), r.message.empty() ? "" : ": ", r.message.c_str());
   finish.set_outcome(outcome_for(r.status));
@@ -262,6 +262,8 @@ void run_attempt(const v1::ClaimResponse& claim, const PoolOptions& o, ServerLin
     finish.set_outcome(v1::ATTEMPT_FAILED);
     finish.set_message(std::string("cannot read the result files: ") + e.what());
   }
+  reporter->stop();
+  if (reporter->lost()) return;  // another attempt owns the job now
   if (auto p = reporter->last_progress()) *finish.mutable_progress() = *p;
   if (auto cp = reporter->last_checkpoint()) *finish.mutable_checkpoint() = *cp;
   if (!r.last_checkpoint.empty() && finish.checkpoint().path() != r.last_checkpoint) {

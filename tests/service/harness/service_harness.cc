@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "server/common/auth_token.h"
+#include "server/common/channel.h"
 
 namespace sph::testing {
 namespace fs = std::filesystem;
@@ -98,7 +99,7 @@ void ServiceHarness::start_server(const ServerSettings& settings) {
 }
 
 void ServiceHarness::connect() {
-  auto channel = grpc::CreateChannel(address_, grpc::InsecureChannelCredentials());
+  auto channel = service::make_channel(address_);  // the clients' limits and reconnects
   jobs_ = v1::JobService::NewStub(channel);
   workers_ = v1::WorkerService::NewStub(channel);
 }
