@@ -46,6 +46,9 @@ grpc::Status WorkerServiceImpl::Claim(grpc::ServerContext* context, const v1::Cl
     while (true) {
       // Read the generation before looking, so a submit in between still wakes us.
       const auto generation = feed_.queue_generation();
+      // A pool that gave up waiting (deadline, cancel, server shutdown) would never learn of
+      // a claim committed for it now: the job would wait out a whole lease and count it lost.
+      if (context->IsCancelled() || feed_.shutting_down()) return grpc::Status::OK;
       if (auto grant = store_.claim(who, now_unix_ms())) {
         *response = std::move(*grant);
         const double lease = response->lease_seconds();
