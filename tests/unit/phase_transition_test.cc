@@ -106,14 +106,16 @@ TEST(PhaseTransition, HalfMeltedBodyMovesAsEq29Says) {
   }
 }
 
+// Two blocks joined by a bar: melting the bar (|x| < 0.45) breaks the body in two.
+const char* const kDumbbell = R"(bodies { name: "dumbbell" material: "solid"
+  shape { union {
+    shapes { box { lo { x: -1.5 y: -0.5 } hi { x: -0.5 y: 0.5 } } }
+    shapes { box { lo { x: 0.5 y: -0.5 } hi { x: 1.5 y: 0.5 } } }
+    shapes { box { lo { x: -0.6 y: -0.1 } hi { x: 0.6 y: 0.1 } } } } } })";
+
 TEST(PhaseTransition, BodyMeltedThroughBecomesTwoBodies) {
   // Two blocks joined by a bar; melting the bar leaves two bodies that keep rotating.
-  Fixture f(scene(R"(bodies { name: "dumbbell" material: "solid"
-                       shape { union {
-                         shapes { box { lo { x: -1.5 y: -0.5 } hi { x: -0.5 y: 0.5 } } }
-                         shapes { box { lo { x: 0.5 y: -0.5 } hi { x: 1.5 y: 0.5 } } }
-                         shapes { box { lo { x: -0.6 y: -0.1 } hi { x: 0.6 y: 0.1 } } } } } })"),
-            Vec<2>(0.2, 0), 1.0);
+  Fixture f(scene(kDumbbell), Vec<2>(0.2, 0), 1.0);
   const RigidBody<2> before = f.bodies->bodies()[0];
   const Vec<2> p0 = f.momentum();
   for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = std::abs(f.s.x[i][0]) < 0.45 ? 100 : 0;
@@ -140,12 +142,7 @@ TEST(PhaseTransition, PiecesOfABodyGetTheirOwnForces) {
   // next step's first half kick must not push a piece with its parent's whole force. The
   // contact force is evaluated again by the simulation; the mean contact force the fluid's
   // wall condition sees is split by mass.
-  Fixture f(scene(R"(bodies { name: "dumbbell" material: "solid"
-                       shape { union {
-                         shapes { box { lo { x: -1.5 y: -0.5 } hi { x: -0.5 y: 0.5 } } }
-                         shapes { box { lo { x: 0.5 y: -0.5 } hi { x: 1.5 y: 0.5 } } }
-                         shapes { box { lo { x: -0.6 y: -0.1 } hi { x: 0.6 y: 0.1 } } } } } })"),
-            Vec<2>(0.2, 0), 1.0);
+  Fixture f(scene(kDumbbell), Vec<2>(0.2, 0), 1.0);
   auto& force = f.bodies->fluid_force();
   RigidBody<2>& whole = f.bodies->bodies()[0];
   for (std::size_t i = 0; i < f.s.owned(); ++i) {
