@@ -280,6 +280,7 @@ StudyOutcome run_study(const v1::Case& c, const std::vector<double>& ladder, MPI
         };
         ro.cancel_requested = o.cancel_requested;
         ro.checkpoint_requested = o.checkpoint_requested;
+        ro.prune_checkpoints = o.prune_checkpoints;
         ro.on_checkpoint = [&](const std::string& path, std::int64_t step, double time) {
           // The wall time up to this checkpoint, so a level resumed from it reports its
           // whole cost.

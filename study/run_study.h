@@ -54,6 +54,7 @@ struct StudyOptions {
   std::function<void(const std::string& path, std::int64_t step, double time)> on_checkpoint;
   const std::atomic<bool>* interrupt = nullptr;
   std::function<bool()> checkpoint_requested;
+  bool prune_checkpoints = true;  // as RunOptions::prune_checkpoints, for every level
   // Rank 0 only: one line per finished level (local mode prints it).
   std::function<void(const LevelResult&)> on_level;
   bool quiet = false;  // no per-step progress lines of the solver

@@ -75,6 +75,9 @@ struct RunOptions {
   const std::atomic<bool>* interrupt = nullptr;
   // Rank 0 only, polled once per step; returning true writes a checkpoint and continues.
   std::function<bool()> checkpoint_requested;
+  // Keep only the two newest files in checkpoints/ (false: keep all; a pool deletes them
+  // itself once the server has heard of newer ones, see worker/pool/checkpoint_pruner.h).
+  bool prune_checkpoints = true;
   bool quiet = false;  // no progress lines on stdout (rank 0)
 };
 

@@ -957,12 +957,13 @@ std::string Simulation<D, K>::write_checkpoint_now() {
   if (phase_) phase_->save(state);
   write_checkpoint(comm_, path, s_, state);
   if (comm_.root()) {
-    // Keep the two newest checkpoints.
-    std::vector<std::filesystem::path> all;
-    for (const auto& e : std::filesystem::directory_iterator(opt_.output_dir + "/checkpoints"))
-      if (e.path().extension() == ".h5") all.push_back(e.path());
-    std::sort(all.begin(), all.end());
-    for (std::size_t k = 0; k + 2 < all.size(); ++k) std::filesystem::remove(all[k]);
+    if (opt_.prune_checkpoints) {  // keep the two newest
+      std::vector<std::filesystem::path> all;
+      for (const auto& e : std::filesystem::directory_iterator(opt_.output_dir + "/checkpoints"))
+        if (e.path().extension() == ".h5") all.push_back(e.path());
+      std::sort(all.begin(), all.end());
+      for (std::size_t k = 0; k + 2 < all.size(); ++k) std::filesystem::remove(all[k]);
+    }
     if (opt_.on_checkpoint) opt_.on_checkpoint(path, step_, t_);
   }
   last_checkpoint_ = path;

@@ -2,6 +2,7 @@
 // running the real solver on tiny 2D cases, and sphctl.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -166,6 +167,51 @@ TEST(ServiceEndToEnd, ServerKilledAndRestartedLosesNothing) {
   EXPECT_GE(progress, 2);
   EXPECT_TRUE(events[events.size() - 2].has_result_ready());
   EXPECT_EQ(events.back().state_change().state(), v1::JOB_STATE_SUCCEEDED);
+  EXPECT_EQ(pool.wait(30s).value_or(-1), 0) << h.logs();
+}
+
+std::vector<fs::path> checkpoint_files(const fs::path& dir) {
+  std::vector<fs::path> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (e.path().extension() == ".h5") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// A pool cut off from the server computes on and writes checkpoints the server never hears
+// of; once its lease expires the server hands the newest checkpoint it knows to the job's
+// next attempt. That file must stay: the pool deletes a checkpoint only after the server has
+// acknowledged two newer ones (worker/pool/checkpoint_pruner.h). Before, the solver kept the
+// two newest files, and the known one was gone two checkpoints after the cut.
+TEST(ServiceEndToEnd, ACutOffPoolKeepsTheCheckpointTheServerKnowsOf) {
+  ServiceHarness h;
+  h.start_server(ServerSettings().lease(3));
+  auto pool = h.start_pool(2, {"--checkpoint-interval", "0.2", "--max-jobs", "1"});
+  const auto job = h.submit_text(channel(12));
+  ASSERT_TRUE(h.wait_for_job(job.id(), 60s, [](const v1::Job& j) {
+    return j.has_checkpoint() && j.checkpoint().step() > 0;
+  })) << h.logs();
+  const fs::path known = h.get_job(job.id()).checkpoint().path();
+  h.server().kill_all();  // kill -9: the pool computes on, unable to report
+  const fs::path dir = known.parent_path();
+  auto newer = [&] {
+    const auto all = checkpoint_files(dir);
+    return std::count_if(all.begin(), all.end(), [&](const fs::path& p) { return p > known; });
+  };
+  // Two seconds cut off (about ten checkpoints), and at least two newer files on disk.
+  std::this_thread::sleep_for(2s);
+  const auto until = std::chrono::steady_clock::now() + 30s;
+  while (newer() < 2 && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(50ms);
+  ASSERT_GE(newer(), 2) << "the pool wrote no checkpoints while cut off\n" << h.logs();
+  EXPECT_TRUE(fs::exists(known)) << "the checkpoint the server knows of was deleted";
+
+  // Back in touch, the server hears of the newer ones and the old ones go.
+  h.start_server();
+  ASSERT_TRUE(h.wait_for_state(job.id(), v1::JOB_STATE_SUCCEEDED, 120s)) << h.logs();
+  EXPECT_EQ(h.get_job(job.id()).attempts_size(), 1);
+  EXPECT_FALSE(fs::exists(known));
+  EXPECT_LE(checkpoint_files(dir).size(), 3u);
   EXPECT_EQ(pool.wait(30s).value_or(-1), 0) << h.logs();
 }
 

@@ -124,12 +124,15 @@ void AttemptReporter::send() {
   v1::ReportResponse resp;
   const grpc::Status status = link_.report(req, &resp);
   if (status.ok()) {
-    std::lock_guard lock(mu_);
-    // Only what this call carried is done; checkpoints written meanwhile stay pending.
-    pending_checkpoints_.erase(pending_checkpoints_.begin(),
-                               pending_checkpoints_.begin() + req.checkpoints_size());
-    if (req.has_progress() && progress_ && progress_->step() == req.progress().step())
-      progress_sent_ = true;
+    {
+      std::lock_guard lock(mu_);
+      // Only what this call carried is done; checkpoints written meanwhile stay pending.
+      pending_checkpoints_.erase(pending_checkpoints_.begin(),
+                                 pending_checkpoints_.begin() + req.checkpoints_size());
+      if (req.has_progress() && progress_ && progress_->step() == req.progress().step())
+        progress_sent_ = true;
+    }
+    for (const auto& cp : req.checkpoints()) pruner_.acknowledged(cp.path());
   }
   if (status.ok()) {
     if (server_away_) service::log_line("%s: server is back", job_id_.c_str());

@@ -3,6 +3,8 @@
 // (progress, new checkpoints) and read flags; this thread makes the Report calls, so a slow
 // or absent server never stalls a time step. Each Report renews the lease and brings back a
 // cancel request; an ABORTED reply means the lease was lost and the attempt must stop.
+// It also deletes old checkpoints once the server has acknowledged newer ones
+// (CheckpointPruner): the solver of a pool keeps them all.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -15,6 +17,7 @@
 
 #include "solver/run/run_case.h"
 #include "sph/v1/service.pb.h"
+#include "worker/pool/checkpoint_pruner.h"
 #include "worker/pool/server_link.h"
 
 namespace sph::worker::pool {
@@ -41,6 +44,9 @@ class AttemptReporter {
   // Stops the thread without a last report: the Finish that follows carries the newest
   // progress and checkpoint (last_progress, last_checkpoint).
   void stop();
+
+  // After stop(): the Finish carrying `path` was accepted.
+  void finish_acknowledged(const std::string& path) { pruner_.acknowledged(path); }
 
   bool lost() const { return lost_.load(); }
   bool cancel_requested() const { return cancel_requested_.load(); }
@@ -69,6 +75,7 @@ class AttemptReporter {
   std::atomic<bool> cancel_requested_{false};
   std::atomic<bool> lost_{false};
   bool server_away_ = false;  // only the reporting thread uses it
+  CheckpointPruner pruner_;   // the reporting thread's until stop(), then the caller's
   std::thread thread_;
 };
 

@@ -129,7 +129,8 @@ std::string summary(const RunOutcome& r, int ranks) {
 
 // Rank 0: Finish, retried while the server is away. A refusal for a stale attempt drops the
 // result (another attempt owns the job); a rejected manifest is reported as a failure.
-void send_finish(ServerLink& link, v1::FinishRequest req) {
+// Returns whether the server accepted it.
+bool send_finish(ServerLink& link, v1::FinishRequest req) {
   // Once told to stop, the process may be killed soon: do not wait long.
   const auto give_up =
       Clock::now() + (g_stop.load() ? std::chrono::seconds(20) : std::chrono::seconds(600));
@@ -140,12 +141,12 @@ void send_finish(ServerLink& link, v1::FinishRequest req) {
     if (status.ok()) {
       service::log_line("%s attempt %d finished: %s", req.job_id().c_str(), req.attempt(),
                         v1::JobState_Name(resp.state()).c_str());
-      return;
+      return false;
     }
     if (attempt_lost(status)) {
       service::log_line("%s attempt %d: the server no longer accepts it (%s); result dropped",
                         req.job_id().c_str(), req.attempt(), status.error_message().c_str());
-      return;
+      return false;
     }
     if (status.error_code() == grpc::StatusCode::INVALID_ARGUMENT && req.files_size() > 0) {
       service::log_line("%s: result manifest rejected: %s", req.job_id().c_str(),
@@ -160,14 +161,14 @@ void send_finish(ServerLink& link, v1::FinishRequest req) {
         status.error_code() != grpc::StatusCode::INTERNAL) {
       service::log_line("%s: finish refused: %s", req.job_id().c_str(),
                         status.error_message().c_str());
-      return;
+      return false;
     }
     if (Clock::now() >= give_up) {
       service::log_line(
           "%s: cannot reach the server to finish (%s); giving up, the job will run again "
           "after its lease expires",
           req.job_id().c_str(), status.error_message().c_str());
-      return;
+      return false;
     }
     std::this_thread::sleep_for(with_jitter(backoff));
     backoff = std::min(backoff * 2, milliseconds(5000));
@@ -230,6 +231,9 @@ void run_attempt(const v1::ClaimResponse& claim, const PoolOptions& o, ServerLin
   opt.progress_interval_seconds = std::min(1.0, report_interval);
   opt.interrupt = &g_stop;
   opt.quiet = !o.verbose;
+  // The reporter deletes old checkpoints once the server knows of newer ones: a pool cut off
+  // from the server must not delete the one the job's next attempt resumes from.
+  opt.prune_checkpoints = false;
   auto last_checkpoint = Clock::now();
   if (rank == 0) {
     opt.on_progress = [&](const Progress& p) { reporter->on_progress(p); };
@@ -273,7 +277,8 @@ void run_attempt(const v1::ClaimResponse& claim, const PoolOptions& o, ServerLin
   }
   for (const auto& [unit, seconds] : r.unit_seconds)
     (*finish.mutable_unit_seconds())[unit] = seconds;
-  send_finish(*link, finish);
+  if (send_finish(*link, finish) && !finish.checkpoint().path().empty())
+    reporter->finish_acknowledged(finish.checkpoint().path());
 }
 
 }  // namespace

@@ -31,6 +31,7 @@ RunOutcome run_study_attempt(const v1::Case& c, const v1::ClaimResponse& claim,
   o.on_checkpoint = run.on_checkpoint;
   o.interrupt = run.interrupt;
   o.checkpoint_requested = run.checkpoint_requested;
+  o.prune_checkpoints = run.prune_checkpoints;
   o.quiet = run.quiet;
   if (reporter != nullptr) {
     o.on_progress = [reporter](const study::StudyProgress& p) {
