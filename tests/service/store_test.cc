@@ -3,10 +3,12 @@
 // so lease expiry needs no sleeping.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 
 #include "server/common/job_state.h"
 #include "server/events/event_feed.h"
+#include "server/lease_reaper.h"
 #include "server/store/job_store.h"
 #include "server/store/schema.h"
 #include "server/store/sqlite.h"
@@ -247,6 +249,36 @@ TEST_F(StoreTest, StateSurvivesReopeningAndLeasesAreRenewed) {
   store_->renew_all_leases(kT0 + 10 * kLeaseMs);
   EXPECT_EQ(store_->expire_leases(kT0 + 10 * kLeaseMs + kLeaseMs / 2), 0);
   EXPECT_EQ(store_->get(id, false).state(), v1::JOB_STATE_RUNNING);
+}
+
+// Lease deadlines are wall-clock times; the reaper notices a step of the wall clock against
+// the monotonic one and renews every running lease instead of expiring them all at once
+// (forward) or keeping a dead pool's job for as long as the step (back).
+TEST_F(StoreTest, AWallClockStepGivesRunningJobsAFreshLease) {
+  using namespace std::chrono_literals;
+  const auto id = submit("a");
+  claim(kT0);
+  LeaseReaper reaper(*store_, 1h);  // its own rounds come too late to matter; the test drives
+  const auto s0 = std::chrono::steady_clock::now();
+  reaper.check(kT0 + 100, s0);
+  // The clock is stepped an hour forward while 200 ms pass.
+  const std::int64_t t1 = kT0 + 300 + 3'600'000;
+  reaper.check(t1, s0 + 200ms);
+  EXPECT_EQ(store_->get(id, false).state(), v1::JOB_STATE_RUNNING);
+  // Without a step the lease runs out as usual.
+  const std::int64_t t2 = t1 + kLeaseMs + 100;
+  reaper.check(t2, s0 + 200ms + std::chrono::milliseconds(kLeaseMs + 100));
+  EXPECT_EQ(store_->get(id, false).state(), v1::JOB_STATE_QUEUED);
+
+  // Claimed again, then the clock is stepped an hour back: the lease still ends one lease
+  // after the step, not an hour later.
+  claim(t2);
+  const auto s2 = s0 + 200ms + std::chrono::milliseconds(kLeaseMs + 100);
+  reaper.check(t2 + 10 - 3'600'000, s2 + 10ms);
+  EXPECT_EQ(store_->get(id, false).state(), v1::JOB_STATE_RUNNING);
+  reaper.check(t2 + 20 - 3'600'000 + kLeaseMs + 100,
+               s2 + 20ms + std::chrono::milliseconds(kLeaseMs + 100));
+  EXPECT_EQ(store_->get(id, false).state(), v1::JOB_STATE_QUEUED);
 }
 
 TEST_F(StoreTest, RefusesADatabaseFromANewerRelease) {
