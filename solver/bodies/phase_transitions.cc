@@ -219,10 +219,20 @@ void PhaseTransitions<D>::regroup(std::vector<Record>& recs,
     if (slot >= 0) {
       nbody = old[static_cast<std::size_t>(slot)];
     } else {
-      // A new body: from new particles only, or a minor piece broken off an old body.
-      if (bs.size() >= max_bodies_) {
+      // A new body: from new particles only, or a minor piece broken off an old body. It
+      // takes the first slot that melting emptied, so that melting and freezing again and
+      // again needs slots for the bodies that exist at once, not for all there ever were. Not
+      // a case body's slot (a checkpoint restores those with the case's motion and name), nor
+      // one that a piece of this regrouping keeps.
+      std::size_t free = bs.size();
+      for (std::size_t k = bodies.case_bodies(); k < bs.size(); ++k)
+        if (bs[k].particles == 0 && !main_piece.contains(static_cast<std::int32_t>(k))) {
+          free = k;
+          break;
+        }
+      if (free == bs.size() && bs.size() >= max_bodies_) {
         out.error = "phase transition needs more than " + std::to_string(max_bodies_) +
-                    " bodies (phase_transitions[].max_bodies)";
+                    " bodies at once (phase_transitions[].max_bodies)";
         return;
       }
       if (first_old >= 0) {
@@ -232,9 +242,10 @@ void PhaseTransitions<D>::regroup(std::vector<Record>& recs,
         nbody = RigidBody<D>();
         nbody.orientation = Orientation<D>();
       }
-      nbody.name = "body_" + std::to_string(bs.size());
-      slot = static_cast<std::int32_t>(bs.size());
-      bs.push_back(nbody);
+      nbody.serial = bodies.next_serial();
+      nbody.name = "body_" + std::to_string(nbody.serial);
+      slot = static_cast<std::int32_t>(free);
+      if (free == bs.size()) bs.push_back(nbody);
     }
     // Mass properties of the piece (eqs. 20-23 with Remark 13), in id order.
     double M = 0;

@@ -23,6 +23,7 @@ RigidBodies<D>::RigidBodies(ParticleStore<D>& s, const v1::Case& c,
     const auto& pb = c.bodies(k);
     RigidBody<D> b;
     b.source = k;
+    b.serial = k;
     b.name = pb.name().empty() ? "body_" + std::to_string(k) : pb.name();
     b.motion = pb.motion_type() == v1::FIXED        ? BodyMotion::kFixed
                : pb.motion_type() == v1::PRESCRIBED ? BodyMotion::kPrescribed
@@ -34,6 +35,8 @@ RigidBodies<D>::RigidBodies(ParticleStore<D>& s, const v1::Case& c,
       b.body_force_factor = (rho_s - fluid_density_of_body[static_cast<size_t>(k)]) / rho_s;
     bodies_.push_back(b);
   }
+  case_bodies_ = bodies_.size();
+  bodies_made_ = static_cast<std::int64_t>(bodies_.size());
 }
 
 template <int D>
@@ -266,10 +269,12 @@ template <int D>
 void RigidBodies<D>::save(std::map<std::string, double>& st) const {
   // Phase transitions add bodies during a run: the count and what a new body was born as.
   st["bodies.count"] = static_cast<double>(bodies_.size());
+  st["bodies.made"] = static_cast<double>(bodies_made_);
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
     const RigidBody<D>& b = bodies_[k];
     const std::string p = "body." + std::to_string(k) + ".";
     st[p + "source"] = b.source;
+    st[p + "serial"] = static_cast<double>(b.serial);
     st[p + "motion"] = static_cast<double>(b.motion);
     st[p + "force_factor"] = b.body_force_factor;
     st[p + "mass"] = b.mass;
@@ -306,7 +311,6 @@ void RigidBodies<D>::load(const std::map<std::string, double>& st) {
     for (std::size_t k = bodies_.size(); k < n; ++k) {
       const std::string p = "body." + std::to_string(k) + ".";
       RigidBody<D> b;
-      b.name = "body_" + std::to_string(k);
       b.source = static_cast<int>(st.at(p + "source"));
       b.motion = static_cast<BodyMotion>(static_cast<int>(st.at(p + "motion")));
       b.body_force_factor = st.at(p + "force_factor");
@@ -315,9 +319,19 @@ void RigidBodies<D>::load(const std::map<std::string, double>& st) {
       bodies_.push_back(b);
     }
   }
+  // Checkpoints from before slots were reused have no serial numbers: slot = serial there.
+  if (const auto it = st.find("bodies.made"); it != st.end())
+    bodies_made_ = static_cast<std::int64_t>(it->second);
+  else
+    bodies_made_ = static_cast<std::int64_t>(bodies_.size());
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
     RigidBody<D>& b = bodies_[k];
     const std::string p = "body." + std::to_string(k) + ".";
+    if (const auto it = st.find(p + "serial"); it != st.end())
+      b.serial = static_cast<std::int64_t>(it->second);
+    else
+      b.serial = static_cast<std::int64_t>(k);
+    if (k >= case_bodies_) b.name = "body_" + std::to_string(b.serial);
     b.mass = st.at(p + "mass");
     b.particles = static_cast<std::int64_t>(st.at(p + "particles"));
     get(st, p + "com0", b.com0);

@@ -34,6 +34,10 @@ class RigidBodies {
 
   std::vector<RigidBody<D>>& bodies() { return bodies_; }
   const std::vector<RigidBody<D>>& bodies() const { return bodies_; }
+  // The case's bodies hold the first slots; later ones were made by phase transitions.
+  std::size_t case_bodies() const { return case_bodies_; }
+  // The serial number for the next body a phase transition makes (RigidBody::serial).
+  std::int64_t next_serial() { return bodies_made_++; }
   Column<std::int32_t>& body_index() { return body_; }
   Column<Vec<D>>& offset() { return offset_; }
   Column<Vec<D>>& particle_acceleration() { return accel_; }
@@ -81,6 +85,8 @@ class RigidBodies {
 
   ParticleStore<D>& s_;
   std::vector<RigidBody<D>> bodies_;
+  std::size_t case_bodies_ = 0;
+  std::int64_t bodies_made_ = 0;
   Column<std::int32_t>& body_;
   Column<Vec<D>>& offset_;       // position relative to the centre of mass, body frame
   Column<Vec<D>>& accel_;        // particle acceleration (wall condition, Adami eq. 27)

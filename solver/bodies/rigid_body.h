@@ -110,8 +110,12 @@ struct RigidBody {
   std::int64_t contacts = 0;
 
   int source = -1;  // index of the case body it descends from (-1: born by solidification)
+  // Its number in the order bodies were made (the case's 0..n-1, then each body a phase
+  // transition makes): a slot that melting emptied goes to a later body, which the series
+  // `bodies/serial` of the result tells apart. Its name is body_<serial> unless the case named it.
+  std::int64_t serial = 0;
 
-  // A body whose particles all melted (or that merged into another) keeps its slot, empty.
+  // A body whose particles all melted (or that merged into another) leaves its slot empty.
   bool active() const { return particles > 0; }
   bool moves_freely() const { return motion == BodyMotion::kFree && active(); }
 

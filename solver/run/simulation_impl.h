@@ -213,6 +213,9 @@ void Simulation<D, K>::build_units() {
     result_.add_series("bodies/kinetic_energy", {nb});
     result_.add_series("bodies/mass", {nb});
     result_.add_series("bodies/inertia", {nb, aa * aa});  // body frame, about the centre of mass
+    // Which body fills each slot (RigidBody::serial; NaN while empty): melting empties slots
+    // and later bodies take them.
+    result_.add_series("bodies/serial", {nb});
     result_.add_field(bodies_->body_index());
   }
   if (probes_)
@@ -870,7 +873,7 @@ void Simulation<D, K>::sample_series() {
 
 template <int D, class K>
 void Simulation<D, K>::sample_bodies() {
-  std::vector<double> pos, vel, w, q, ff, ft, cf, ct, n, ke, mass, inertia;
+  std::vector<double> pos, vel, w, q, ff, ft, cf, ct, n, ke, mass, inertia, serial;
   // Fixed width: slots of bodies not born yet (phase transitions) or gone are NaN.
   std::vector<RigidBody<D>> padded;
   const std::vector<RigidBody<D>>* list = &bodies_->bodies();
@@ -907,6 +910,8 @@ void Simulation<D, K>::sample_bodies() {
     n.push_back(static_cast<double>(b.contacts));
     ke.push_back(b.kinetic_energy());
     mass.push_back(b.mass);
+    serial.push_back(b.active() || !phase_ ? static_cast<double>(b.serial)
+                                           : std::numeric_limits<double>::quiet_NaN());
     for (int p = 0; p < RigidBodies<D>::A; ++p)
       for (int r = 0; r < RigidBodies<D>::A; ++r) inertia.push_back(b.inertia_body(p, r));
   }
@@ -922,6 +927,7 @@ void Simulation<D, K>::sample_bodies() {
   result_.append_series("bodies/contacts", n);
   result_.append_series("bodies/kinetic_energy", ke);
   result_.append_series("bodies/mass", mass);
+  result_.append_series("bodies/serial", serial);
   result_.append_series("bodies/inertia", inertia);
   if (phase_) {
     std::int64_t active = 0;

@@ -278,5 +278,49 @@ TEST(PhaseTransition, BodyTableCapacityIsEnforced) {
   EXPECT_NE(out.error.find("max_bodies"), std::string::npos) << out.error;
 }
 
+// Melting and freezing again and again needs slots for the bodies that exist at once: a slot
+// that melting emptied goes to the next body made, under a new serial number and name, and a
+// checkpoint keeps both.
+TEST(PhaseTransition, AnEmptiedSlotGoesToTheNextBodyMade) {
+  const v1::Case c = scene(R"(fluids { name: "a" material: "liquid"
+                                shape { ball { center { x: -2 y: 0 } radius: 0.3 } } }
+                              fluids { name: "b" material: "liquid"
+                                shape { ball { center { x: 2 y: 0 } radius: 0.3 } } })");
+  Fixture f(c, Vec<2>(0, 0), 0.0);
+  PhaseTransitions<2> pt({rule(50, 0, true)}, 2, 0.1);  // room for two bodies
+  auto set = [&](double left, double right) {
+    for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = f.s.x[i][0] < 0 ? left : right;
+  };
+  auto& bs = f.bodies->bodies();
+  set(0, 0);  // both blobs freeze: two bodies
+  ASSERT_TRUE(f.run(pt).error.empty());
+  ASSERT_EQ(bs.size(), 2u);
+  EXPECT_EQ(bs[0].serial, 0);
+  EXPECT_EQ(bs[1].serial, 1);
+  set(100, 0);  // the left one melts: slot 0 is empty
+  ASSERT_TRUE(f.run(pt).error.empty());
+  EXPECT_FALSE(bs[0].active());
+  set(0, 0);  // and freezes again: a third body, in slot 0
+  const auto out = f.run(pt);
+  ASSERT_TRUE(out.error.empty()) << out.error;
+  ASSERT_EQ(bs.size(), 2u);
+  EXPECT_TRUE(bs[0].active());
+  EXPECT_EQ(bs[0].serial, 2);
+  EXPECT_EQ(bs[0].name, "body_2");
+  EXPECT_EQ(bs[1].serial, 1);
+  for (std::size_t i = 0; i < f.s.owned(); ++i)
+    EXPECT_EQ(f.bodies->body_index()[i], f.s.x[i][0] < 0 ? 0 : 1);
+
+  std::map<std::string, double> st;
+  f.bodies->save(st);
+  Fixture g(c, Vec<2>(0, 0), 0.0);
+  g.bodies->load(st);
+  ASSERT_EQ(g.bodies->bodies().size(), 2u);
+  EXPECT_EQ(g.bodies->bodies()[0].serial, 2);
+  EXPECT_EQ(g.bodies->bodies()[0].name, "body_2");
+  EXPECT_EQ(g.bodies->bodies()[1].name, "body_1");
+  EXPECT_EQ(g.bodies->next_serial(), 3);
+}
+
 }  // namespace
 }  // namespace sph
