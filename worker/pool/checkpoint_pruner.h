@@ -21,12 +21,10 @@ class CheckpointPruner {
   // Finish carrying it returned OK. Call in the order the checkpoints were written.
   void acknowledged(const std::string& path);
 
-  // Acknowledged checkpoints still on disk, per folder, oldest first.
-  const std::map<std::string, std::vector<std::string>>& kept() const { return kept_; }
-
   static constexpr std::size_t kKeep = 2;
 
  private:
+  // Acknowledged checkpoints still on disk, per folder, oldest first.
   std::map<std::string, std::vector<std::string>> kept_;
 };
 

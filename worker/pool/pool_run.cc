@@ -141,7 +141,7 @@ bool send_finish(ServerLink& link, v1::FinishRequest req) {
     if (status.ok()) {
       service::log_line("%s attempt %d finished: %s", req.job_id().c_str(), req.attempt(),
                         v1::JobState_Name(resp.state()).c_str());
-      return false;
+      return true;
     }
     if (attempt_lost(status)) {
       service::log_line("%s attempt %d: the server no longer accepts it (%s); result dropped",
