@@ -28,6 +28,8 @@ commands:
                          cancel a job (idempotent); a running job keeps its partial output
   fetch JOB [-o DIR] [--file NAME]
                          download the result files (default into ./JOB) and verify sha256
+  delete JOB             free a finished job's disk on the server (every attempt's results
+                         and checkpoints); its record and history stay
   health                 the server's health status
 
 options (anywhere on the line):
@@ -72,6 +74,7 @@ int run(int argc, char** argv) {
   if (command == "watch") return cmd_watch(*g, std::move(rest));
   if (command == "cancel") return cmd_cancel(*g, std::move(rest));
   if (command == "fetch") return cmd_fetch(*g, std::move(rest));
+  if (command == "delete") return cmd_delete(*g, std::move(rest));
   if (command == "health") return cmd_health(*g, std::move(rest));
   std::fprintf(stderr, "sphctl: unknown command '%s'\n%s", command.c_str(), kHelp);
   return kUsage;

@@ -15,6 +15,7 @@ int cmd_status(const GlobalOptions& g, ArgScanner args);
 int cmd_list(const GlobalOptions& g, ArgScanner args);
 int cmd_watch(const GlobalOptions& g, ArgScanner args);
 int cmd_cancel(const GlobalOptions& g, ArgScanner args);
+int cmd_delete(const GlobalOptions& g, ArgScanner args);
 int cmd_fetch(const GlobalOptions& g, ArgScanner args);
 int cmd_health(const GlobalOptions& g, ArgScanner args);
 int cmd_study(const GlobalOptions& g, ArgScanner args);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include "server/common/log.h"
 #include "server/common/message_limits.h"
 #include "server/common/sha256.h"
+#include "server/results/job_files_removal.h"
 #include "server/store/job_ids.h"
 
 namespace sph::server::api {
@@ -47,6 +50,15 @@ grpc::Status check_request_id(const std::string& id) {
     if (!std::isalnum(ch) && ch != '.' && ch != '_' && ch != ':' && ch != '-')
       return invalid_argument("request_id", "may contain only letters, digits and . _ : -");
   return grpc::Status::OK;
+}
+
+std::string utc_time(std::int64_t unix_ms) {
+  const std::time_t t = unix_ms / 1000;
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[40];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S UTC", &tm);
+  return buf;
 }
 
 bool is_terminal_event(const v1::JobEvent& e) {
@@ -220,6 +232,10 @@ grpc::Status JobServiceImpl::FetchResult(grpc::ServerContext* context,
     return invalid_argument("offset", "needs a single file");
   return guarded([&] {
     const v1::Job job = store_.get(id, false);
+    if (job.files_deleted_unix_ms() > 0)
+      return grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
+                          job.id() + "'s files were deleted at " +
+                              utc_time(job.files_deleted_unix_ms()) + " (sphctl delete)");
     if (!job.has_result() || job.result().files_size() == 0)
       return grpc::Status(
           grpc::StatusCode::FAILED_PRECONDITION,
@@ -273,6 +289,43 @@ grpc::Status JobServiceImpl::FetchResult(grpc::ServerContext* context,
         offset += n;
       } while (offset < size);
     }
+    return grpc::Status::OK;
+  });
+}
+
+grpc::Status JobServiceImpl::DeleteJobFiles(grpc::ServerContext* context,
+                                            const v1::DeleteJobFilesRequest* request,
+                                            v1::DeleteJobFilesResponse* response) {
+  if (auto s = auth_.check(*context); !s.ok()) return s;
+  std::int64_t id = 0;
+  if (auto s = parse_id(request->job_id(), id); !s.ok()) return s;
+  return guarded([&] {
+    std::lock_guard lock(delete_mu_);
+    // A finished job never runs again, so nothing of ours writes into its directory while it
+    // is removed. The removal comes first and the record after it: a removal that fails half
+    // way leaves the job unmarked, and calling again finishes it. Every call removes the
+    // directory, also after the first: a pool cut off from the server may still write there
+    // until it learns that its attempt ended.
+    const v1::Job job = store_.get_finished(id);
+    RemovedFiles removed;
+    try {
+      removed = remove_job_files(layout_, job.id());
+    } catch (const std::filesystem::filesystem_error& e) {
+      service::log_line("%s: deleting its files failed: %s", job.id().c_str(), e.what());
+      return grpc::Status(grpc::StatusCode::INTERNAL,
+                          "deleting " + layout_.job_dir(job.id()).string() +
+                              " failed (what was removed stays removed; call again to "
+                              "retry): " +
+                              e.what());
+    }
+    auto [updated, now] = store_.record_files_deleted(id, removed.bytes, now_unix_ms());
+    if (now || removed.files > 0)
+      service::log_line("%s: deleted %lld files (%lld bytes) in %s", job.id().c_str(),
+                        static_cast<long long>(removed.files),
+                        static_cast<long long>(removed.bytes),
+                        layout_.job_dir(job.id()).string().c_str());
+    *response->mutable_job() = std::move(updated);
+    response->set_deleted_now(now);
     return grpc::Status::OK;
   });
 }

@@ -1,5 +1,7 @@
 #pragma once
-// JobService: what clients call (submit, inspect, follow, cancel, fetch).
+// JobService: what clients call (submit, inspect, follow, cancel, fetch, delete files).
+#include <mutex>
+
 #include "server/api/auth.h"
 #include "server/events/event_feed.h"
 #include "server/results/result_layout.h"
@@ -30,6 +32,9 @@ class JobServiceImpl final : public v1::JobService::Service {
                          v1::Job* response) override;
   grpc::Status FetchResult(grpc::ServerContext* context, const v1::FetchResultRequest* request,
                            grpc::ServerWriter<v1::FileChunk>* writer) override;
+  grpc::Status DeleteJobFiles(grpc::ServerContext* context,
+                              const v1::DeleteJobFilesRequest* request,
+                              v1::DeleteJobFilesResponse* response) override;
 
  private:
   store::JobStore& store_;
@@ -37,6 +42,8 @@ class JobServiceImpl final : public v1::JobService::Service {
   const ResultLayout& layout_;
   const TokenCheck& auth_;
   JobServiceLimits limits_;
+  // One removal at a time: two racing calls would each count what the other removed.
+  std::mutex delete_mu_;
 };
 
 }  // namespace sph::server::api

@@ -17,7 +17,8 @@ using service::state_name;
 
 constexpr const char* kJobColumns =
     "id, request_id, name, state, reason, attempt, cancel_requested, created_ms, started_ms, "
-    "finished_ms, estimated_particles, progress, checkpoint, result, last_event, study";
+    "finished_ms, estimated_particles, progress, checkpoint, result, last_event, study, "
+    "files_deleted_ms, files_deleted_bytes";
 
 v1::JobState state_from_text(const std::string& s) {
   const auto parsed = service::parse_state(s);
@@ -37,7 +38,7 @@ void parse_blob(const Statement& st, int column, Message* out) {
   if (!st.is_null(column)) out->ParseFromString(st.blob(column));
 }
 
-// Reads the columns of kJobColumns (and case_text at column 16 when asked).
+// Reads the columns of kJobColumns (and case_text at column 18 when asked).
 v1::Job job_from_row(const Statement& st, bool with_case) {
   v1::Job j;
   j.set_id(format_job_id(st.int64(0)));
@@ -56,7 +57,11 @@ v1::Job job_from_row(const Statement& st, bool with_case) {
   if (!st.is_null(13)) parse_blob(st, 13, j.mutable_result());
   j.set_last_event_sequence(st.int64(14));
   if (!st.is_null(15)) parse_blob(st, 15, j.mutable_study());
-  if (with_case) j.set_case_text(st.text(16));
+  if (!st.is_null(16)) {
+    j.set_files_deleted_unix_ms(st.int64(16));
+    j.set_files_deleted_bytes(st.int64(17));
+  }
+  if (with_case) j.set_case_text(st.text(18));
   return j;
 }
 
@@ -75,6 +80,13 @@ std::string event_kind(const v1::JobEvent& e) {
     default:
       return "unknown";
   }
+}
+
+std::string finished_only_message(std::int64_t id, v1::JobState state) {
+  const std::string job = format_job_id(id);
+  return job + " is " + state_name(state) +
+         ": only a finished job's files can be deleted (cancel it first: sphctl cancel " + job +
+         ")";
 }
 
 std::string resume_phrase(const v1::Job& j) {
@@ -349,6 +361,32 @@ v1::Job JobStore::cancel(std::int64_t id, const std::string& reason, std::int64_
   tx.commit();
   publish();
   return j;
+}
+
+v1::Job JobStore::get_finished(std::int64_t id) {
+  std::lock_guard lock(mu_);
+  v1::Job j = read_job(id, false, false);
+  if (!is_terminal(j.state()))
+    throw JobError(JobError::Kind::kPrecondition, finished_only_message(id, j.state()));
+  return j;
+}
+
+std::pair<v1::Job, bool> JobStore::record_files_deleted(std::int64_t id, std::int64_t bytes,
+                                                        std::int64_t now_ms) {
+  std::lock_guard lock(mu_);
+  pending_events_.clear();
+  WriteTransaction tx(db_);
+  const Row r = load_row(id);
+  if (!is_terminal(r.state))
+    throw JobError(JobError::Kind::kPrecondition, finished_only_message(id, r.state));
+  auto st = db_.prepare(
+      "UPDATE jobs SET files_deleted_ms = ?2, files_deleted_bytes = ?3 WHERE id = ?1 AND "
+      "files_deleted_ms IS NULL");
+  st.bind(1, id).bind(2, now_ms).bind(3, bytes).run();
+  const bool now = sqlite3_changes(db_.handle()) > 0;
+  v1::Job j = read_job(id, false, true);
+  tx.commit();
+  return {std::move(j), now};
 }
 
 std::optional<v1::ClaimResponse> JobStore::claim(const ClaimInfo& who, std::int64_t now_ms) {

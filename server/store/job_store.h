@@ -7,6 +7,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "server/events/event_feed.h"
@@ -58,6 +59,15 @@ class JobStore {
   // Newest first, ids below `before` (0: from the newest).
   JobPage list(const std::vector<v1::JobState>& states, int page_size, std::int64_t before);
   v1::Job cancel(std::int64_t id, const std::string& reason, std::int64_t now_ms);
+  // The job, when it is finished (a terminal state, which never changes again); throws
+  // kPrecondition otherwise, saying what to do.
+  v1::Job get_finished(std::int64_t id);
+  // Records that a finished job's files were removed (the caller removes them first: a
+  // terminal job never runs again, so nothing writes there in between). Returns the job and
+  // whether this call recorded it (false when an earlier one had). Throws kPrecondition for
+  // a job that is not finished.
+  std::pair<v1::Job, bool> record_files_deleted(std::int64_t id, std::int64_t bytes,
+                                                std::int64_t now_ms);
 
   // The oldest queued job as a new attempt, or nullopt when the queue is empty.
   std::optional<v1::ClaimResponse> claim(const ClaimInfo& who, std::int64_t now_ms);

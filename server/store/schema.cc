@@ -7,7 +7,7 @@ namespace sph::server::store {
 namespace {
 
 // Never edit a migration that has shipped; append a new one.
-constexpr std::array<const char*, 2> kMigrations = {
+constexpr std::array<const char*, 3> kMigrations = {
     // 1: jobs, attempts and the append-only event log.
     R"sql(
 CREATE TABLE jobs (
@@ -66,6 +66,11 @@ BEGIN SELECT RAISE(ABORT, 'events are append-only'); END;
     // 2: convergence-study jobs carry their ladder (sph.v1.StudySpec); NULL for single runs.
     R"sql(
 ALTER TABLE jobs ADD COLUMN study BLOB;
+)sql",
+    // 3: DeleteJobFiles records when it removed a finished job's files and what that freed.
+    R"sql(
+ALTER TABLE jobs ADD COLUMN files_deleted_ms INTEGER;
+ALTER TABLE jobs ADD COLUMN files_deleted_bytes INTEGER;
 )sql",
 };
 

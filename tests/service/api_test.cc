@@ -352,6 +352,69 @@ TEST(ServiceApi, FetchServesOnlyTheResultManifest) {
   EXPECT_EQ(outside.exit_code, 4) << outside.err;
 }
 
+TEST(ServiceApi, DeletingAFinishedJobsFilesFreesItsDiskAndKeepsItsRecord) {
+  ServiceHarness h;
+  h.start_server();
+  const auto job = h.submit_text(small_case());
+  const auto c = claim(h);
+  const auto h5 = write_result(c, "result.h5", std::string(100000, 'x'));
+  const auto xmf = write_result(c, "result.xmf", "<Xdmf/>");
+  write_result(c, "checkpoints/ckpt_1.h5", std::string(5000, 'c'));
+  const fs::path job_dir = fs::path(c.output_dir()).parent_path();
+
+  // Not while it runs: its pool is writing there.
+  const auto running = h.sphctl({"delete", job.id()});
+  EXPECT_EQ(running.exit_code, 8) << running.err;
+  EXPECT_NE(running.err.find("cancel it first"), std::string::npos) << running.err;
+  EXPECT_TRUE(fs::exists(fs::path(c.output_dir()) / "result.h5"));
+
+  v1::FinishRequest fin;
+  fin.set_job_id(c.job_id());
+  fin.set_attempt(c.attempt());
+  fin.set_outcome(v1::ATTEMPT_COMPLETED);
+  *fin.add_files() = h5;
+  *fin.add_files() = xmf;
+  v1::FinishResponse fr;
+  ASSERT_TRUE(h.workers().Finish(h.context().get(), fin, &fr).ok());
+  ASSERT_TRUE(fetch(h, job.id(), "result.h5").ok());
+
+  const auto deleted = h.sphctl({"delete", job.id()});
+  EXPECT_EQ(deleted.exit_code, 0) << deleted.err;
+  EXPECT_NE(deleted.out.find("deleted its files (102.5 KiB, 1 attempt)"), std::string::npos)
+      << deleted.out;
+  EXPECT_FALSE(fs::exists(job_dir));
+  const v1::Job after = h.get_job(job.id());
+  EXPECT_EQ(after.state(), v1::JOB_STATE_SUCCEEDED);
+  EXPECT_GT(after.files_deleted_unix_ms(), 0);
+  EXPECT_EQ(after.files_deleted_bytes(), h5.size() + xmf.size() + 5000);
+  EXPECT_EQ(after.attempts_size(), 1);
+  EXPECT_EQ(after.result().files_size(), 2);  // what there was, for the record
+
+  const auto gone = fetch(h, job.id(), "result.h5");
+  EXPECT_EQ(gone.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+  EXPECT_NE(gone.error_message().find("deleted"), std::string::npos) << gone.error_message();
+  EXPECT_EQ(h.sphctl({"fetch", job.id(), "-o", h.dir() + "/fetched"}).exit_code, 8);
+  const auto status = h.sphctl({"status", job.id()});
+  EXPECT_NE(status.out.find("files:      deleted"), std::string::npos) << status.out;
+
+  // Idempotent, and the first call's record stays.
+  const auto again = h.sphctl({"delete", job.id(), "--json"});
+  EXPECT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("\"deleted_now\":false"), std::string::npos) << again.out;
+  EXPECT_EQ(h.get_job(job.id()).files_deleted_unix_ms(), after.files_deleted_unix_ms());
+  EXPECT_NE(h.sphctl({"delete", job.id()}).out.find("already deleted"), std::string::npos);
+
+  EXPECT_EQ(h.sphctl({"delete", "job-99"}).exit_code, 4);
+  EXPECT_EQ(h.sphctl({"delete", "nonsense"}).exit_code, 3);  // INVALID_ARGUMENT
+  // A queued job keeps what a resubmission would need, so it is refused too.
+  const auto queued = h.submit_text(small_case());
+  v1::DeleteJobFilesRequest req;
+  req.set_job_id(queued.id());
+  v1::DeleteJobFilesResponse resp;
+  EXPECT_EQ(h.jobs().DeleteJobFiles(h.context().get(), req, &resp).error_code(),
+            grpc::StatusCode::FAILED_PRECONDITION);
+}
+
 TEST(ServiceApi, WatchResumesFromASequenceAndEndsWithTheJob) {
   ServiceHarness h;
   h.start_server();

@@ -291,25 +291,29 @@ TEST_F(StoreTest, RefusesADatabaseFromANewerRelease) {
 }
 
 TEST_F(StoreTest, MigratesAVersion1DatabaseAndKeepsStudiesWithTheirJobs) {
-  // A database of the first release: no jobs.study column, user_version 1.
+  // A database of the first release: no jobs.study column (migration 2) and no record of
+  // deleted files (migration 3), user_version 1.
   const auto old_job = submit("before");
   store_.reset();
   {
     Database raw(db());
     raw.exec("ALTER TABLE jobs DROP COLUMN study");
+    raw.exec("ALTER TABLE jobs DROP COLUMN files_deleted_ms");
+    raw.exec("ALTER TABLE jobs DROP COLUMN files_deleted_bytes");
     raw.exec("PRAGMA user_version = 1");
   }
   open();  // migrates to the current version
-  EXPECT_EQ(current_schema_version(), 2);
+  EXPECT_EQ(current_schema_version(), 3);
   {
     Database raw(db());
     auto st = raw.prepare("PRAGMA user_version");
     st.step();
-    EXPECT_EQ(st.int64(0), 2);
+    EXPECT_EQ(st.int64(0), 3);
   }
   const v1::Job before = store_->get(old_job, true);
   EXPECT_EQ(before.state(), v1::JOB_STATE_QUEUED);
   EXPECT_FALSE(before.has_study());
+  EXPECT_EQ(before.files_deleted_unix_ms(), 0);
 
   // A study job keeps its ladder, and every attempt after the first learns where the earlier
   // ones wrote (their finished levels are reused).
@@ -335,6 +339,45 @@ TEST_F(StoreTest, MigratesAVersion1DatabaseAndKeepsStudiesWithTheirJobs) {
   ASSERT_EQ(second.previous_output_dirs_size(), 1);
   EXPECT_EQ(second.previous_output_dirs(0), first.output_dir());
   EXPECT_EQ(store_->list({}, 10, 0).jobs.front().study().refine(), 4);
+}
+
+TEST_F(StoreTest, DeletedFilesAreRecordedOnceAndOnlyForAFinishedJob) {
+  const auto id = submit("a");
+  auto refused = [&](const char* when) {
+    try {
+      store_->record_files_deleted(id, 1, kT0);
+      ADD_FAILURE() << "recorded for a job that is " << when;
+    } catch (const JobError& e) {
+      EXPECT_EQ(e.kind(), JobError::Kind::kPrecondition);
+      EXPECT_NE(std::string(e.what()).find("cancel it first"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(store_->get_finished(id), JobError) << when;
+  };
+  refused("queued");
+  const auto c = claim(kT0);
+  refused("running");
+  EXPECT_EQ(store_->finish(finish_for(c, v1::ATTEMPT_COMPLETED), kT0 + 10),
+            v1::JOB_STATE_SUCCEEDED);
+  EXPECT_EQ(store_->get_finished(id).state(), v1::JOB_STATE_SUCCEEDED);
+  const std::int64_t last_event = store_->get(id, false).last_event_sequence();
+
+  const auto [first, first_now] = store_->record_files_deleted(id, 12345, kT0 + 20);
+  EXPECT_TRUE(first_now);
+  EXPECT_EQ(first.files_deleted_unix_ms(), kT0 + 20);
+  EXPECT_EQ(first.files_deleted_bytes(), 12345);
+  EXPECT_EQ(first.state(), v1::JOB_STATE_SUCCEEDED);
+  EXPECT_EQ(first.attempts_size(), 1);
+  // A second call changes nothing; the history has no new event (it ended with the job).
+  const auto [second, second_now] = store_->record_files_deleted(id, 0, kT0 + 30);
+  EXPECT_FALSE(second_now);
+  EXPECT_EQ(second.files_deleted_unix_ms(), kT0 + 20);
+  EXPECT_EQ(second.files_deleted_bytes(), 12345);
+  EXPECT_EQ(second.last_event_sequence(), last_event);
+  open();
+  const v1::Job reopened = store_->get(id, false);
+  EXPECT_EQ(reopened.files_deleted_unix_ms(), kT0 + 20);
+  EXPECT_EQ(reopened.files_deleted_bytes(), 12345);
+  EXPECT_EQ(store_->list({}, 10, 0).jobs.front().files_deleted_bytes(), 12345);
 }
 
 TEST_F(StoreTest, ListsNewestFirstInPagesAndByState) {
