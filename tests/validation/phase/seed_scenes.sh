@@ -10,9 +10,11 @@
 # is run again. SPHD_RANKS sets the ranks (default 1). SPHD_PAPER=1 adds the gastric scene at
 # the paper's dx = 0.1 (67k particles, 160k steps, about 2.2 h on two idle cores; with the
 # paper's c = 1e3 it stopped on the solid-fraction guard at t = 0.623, see phase_change.md);
-# SPHD_PAPER=2 also the powder scenes at the paper's resolution (2D: 58k particles, about
-# 5 h on two cores; 3D: 113k particles, about 17 h on two), meant to be continued over
-# several invocations.
+# SPHD_PAPER=2 also the powder scenes at the paper's resolution (2D: 53k particles, about
+# 4 h on two idle cores; 3D: 113k particles, about 17 h on two), meant to be continued over
+# several invocations (keep OUT_DIR outside a work tree that is cleaned between them).
+# SPHD_SCENES="powder_2d ..." runs (and renders) only the named scenes: gastric_04,
+# powder_2d_coarse, powder_3d_coarse, powder_slice_2d, gastric_01, powder_2d, powder_3d.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
 build=${1:-$root/build}
@@ -20,8 +22,12 @@ out=${2:-$root/out/scenes}
 ranks=${SPHD_RANKS:-1}
 reports=$root/tests/validation/reports
 mkdir -p "$out"
+selected() {  # name: whether SPHD_SCENES (when set) names it
+  [ -z "${SPHD_SCENES:-}" ] || [[ " $SPHD_SCENES " == *" $1 "* ]]
+}
 run() {  # name case-file [sed expression]
   local name=$1 case=$2 edit=${3:-}
+  if ! selected "$name"; then return; fi
   if [ -f "$out/$name/wall_seconds" ]; then echo "== $name: kept"; return; fi
   mkdir -p "$out/$name"
   local resume=() last
@@ -59,24 +65,25 @@ if [ "${SPHD_PAPER:-0}" -ge 2 ]; then
   run powder_3d "$root/cases/powder_melting_3d.textproto"
 fi
 render=$root/tests/validation/phase/render.py
-/usr/bin/python3 "$render" "$out/gastric_04/result.h5" "$reports" gastric_dx04
-if [ -f "$out/gastric_01/wall_seconds" ]; then
-  /usr/bin/python3 "$render" "$out/gastric_01/result.h5" "$reports" gastric_dx01 --frames 5
-fi
-if [ -f "$out/powder_2d/wall_seconds" ]; then
-  /usr/bin/python3 "$render" "$out/powder_2d/result.h5" "$reports" powder_grains_2d \
-    --scalar temperature --speed-max 800 --labels grain,melt,gas --frames 8
-fi
-if [ -f "$out/powder_3d/wall_seconds" ]; then
-  /usr/bin/python3 "$render" "$out/powder_3d/result.h5" "$reports" powder_melting_3d_xz \
-    --scalar temperature --labels grain,melt,gas --frames 6 --plane xz
-fi
-/usr/bin/python3 "$render" "$out/powder_2d_coarse/result.h5" "$reports" powder_grains_2d_coarse \
-  --scalar temperature --speed-max 800 --labels grain,melt,gas --frames 8
-/usr/bin/python3 "$render" "$out/powder_3d_coarse/result.h5" "$reports" powder_melting_3d_coarse_xy \
-  --scalar temperature --labels grain,melt,gas --frames 6 --plane xy --frames-only
-/usr/bin/python3 "$render" "$out/powder_3d_coarse/result.h5" "$reports" powder_melting_3d_coarse_xz \
-  --scalar temperature --labels grain,melt,gas --frames 6 --plane xz
-/usr/bin/python3 "$render" "$out/powder_slice_2d/result.h5" "$reports" powder_melting_slice_2d \
-  --scalar temperature --speed-max 5 --labels grain,melt,gas --frames 8
+draw() {  # name result-name render-arguments...: renders a finished, selected run
+  local name=$1 figure=$2
+  shift 2
+  if selected "$name" && [ -f "$out/$name/wall_seconds" ]; then
+    /usr/bin/python3 "$render" "$out/$name/result.h5" "$reports" "$figure" "$@"
+  fi
+}
+draw gastric_04 gastric_dx04
+draw gastric_01 gastric_dx01 --frames 5
+draw powder_2d powder_grains_2d --scalar temperature --speed-max 800 --labels grain,melt,gas \
+  --frames 8
+draw powder_3d powder_melting_3d_xz --scalar temperature --labels grain,melt,gas --frames 6 \
+  --plane xz
+draw powder_2d_coarse powder_grains_2d_coarse --scalar temperature --speed-max 800 \
+  --labels grain,melt,gas --frames 8
+draw powder_3d_coarse powder_melting_3d_coarse_xy --scalar temperature --labels grain,melt,gas \
+  --frames 6 --plane xy --frames-only
+draw powder_3d_coarse powder_melting_3d_coarse_xz --scalar temperature --labels grain,melt,gas \
+  --frames 6 --plane xz
+draw powder_slice_2d powder_melting_slice_2d --scalar temperature --speed-max 5 \
+  --labels grain,melt,gas --frames 8
 /usr/bin/python3 "$root/tests/validation/phase/scene_figures.py" "$out"
