@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <utility>
 #include <vector>
 
 #include "server/common/job_state.h"
+#include "server/common/time_text.h"
 
 namespace sph::ctl {
 namespace {
@@ -62,12 +62,7 @@ std::string format_count(double n) {
 
 std::string format_time_ms(std::int64_t unix_ms) {
   if (unix_ms <= 0) return "-";
-  const std::time_t t = unix_ms / 1000;
-  std::tm tm{};
-  localtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S", &tm);
-  return buf;
+  return service::format_unix_seconds(unix_ms / 1000);
 }
 
 std::string study_summary(const v1::StudySpec& spec) {

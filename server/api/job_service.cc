@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <vector>
@@ -17,6 +16,7 @@
 #include "server/common/log.h"
 #include "server/common/message_limits.h"
 #include "server/common/sha256.h"
+#include "server/common/time_text.h"
 #include "server/results/job_files_removal.h"
 #include "server/store/job_ids.h"
 
@@ -50,15 +50,6 @@ grpc::Status check_request_id(const std::string& id) {
     if (!std::isalnum(ch) && ch != '.' && ch != '_' && ch != ':' && ch != '-')
       return invalid_argument("request_id", "may contain only letters, digits and . _ : -");
   return grpc::Status::OK;
-}
-
-std::string utc_time(std::int64_t unix_ms) {
-  const std::time_t t = unix_ms / 1000;
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[40];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S UTC", &tm);
-  return buf;
 }
 
 bool is_terminal_event(const v1::JobEvent& e) {
@@ -233,9 +224,11 @@ grpc::Status JobServiceImpl::FetchResult(grpc::ServerContext* context,
   return guarded([&] {
     const v1::Job job = store_.get(id, false);
     if (job.files_deleted_unix_ms() > 0)
-      return grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
-                          job.id() + "'s files were deleted at " +
-                              utc_time(job.files_deleted_unix_ms()) + " (sphctl delete)");
+      return grpc::Status(
+          grpc::StatusCode::FAILED_PRECONDITION,
+          job.id() + "'s files were deleted at " +
+              service::format_unix_seconds(job.files_deleted_unix_ms() / 1000, true) +
+              " (sphctl delete)");
     if (!job.has_result() || job.result().files_size() == 0)
       return grpc::Status(
           grpc::StatusCode::FAILED_PRECONDITION,

@@ -4,6 +4,9 @@
 #include <cstdarg>
 #include <cstdio>
 #include <ctime>
+#include <string>
+
+#include "server/common/time_text.h"
 
 namespace sph::service {
 namespace {
@@ -19,17 +22,15 @@ void log_line(const char* format, ...) {
   const std::time_t t = std::chrono::system_clock::to_time_t(now);
   const auto ms =
       std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()) % 1000;
-  std::tm tm{};
-  localtime_r(&t, &tm);
-  char stamp[32];
-  std::strftime(stamp, sizeof stamp, "%Y-%m-%d %H:%M:%S", &tm);
+  const std::string stamp = format_unix_seconds(t);
   char msg[2048];
   va_list args;
   va_start(args, format);
   std::vsnprintf(msg, sizeof msg, format, args);
   va_end(args);
   // One fprintf per line so lines from different threads do not interleave.
-  std::fprintf(stderr, "%s.%03d %s: %s\n", stamp, static_cast<int>(ms.count()), g_name, msg);
+  std::fprintf(stderr, "%s.%03d %s: %s\n", stamp.c_str(), static_cast<int>(ms.count()), g_name,
+               msg);
 }
 
 }  // namespace sph::service
