@@ -86,7 +86,9 @@ class OpenBoundaries {
   const std::vector<std::int64_t>& through() const { return through_; }
 
   // Prescribed velocities at time t (inflows, velocity outlets), and the transport velocity
-  // when given (the start of a run).
+  // when given: a buffer particle moves with its prescribed velocity, so its transport
+  // velocity is that velocity too (else its neighbours see an artificial stress
+  // rho u (u~ - u) from a stale u~, Adami, Hu, Adams 2013).
   void set_prescribed_velocities(double t, Column<Vec<D>>* transport) {
     for (std::size_t i = 0; i < s_.owned(); ++i) {
       const std::uint8_t z = zone_[i];
@@ -99,9 +101,9 @@ class OpenBoundaries {
   }
 
   // After the drift, at the new time t: particles cross faces, inflow buffers refill,
-  // outflows delete, prescribed velocities are updated. Collective. Returns the change of the
-  // global particle count.
-  std::int64_t exchange_particles(double t, const Comm& comm) {
+  // outflows delete, prescribed velocities (and transport velocities, when given) are
+  // updated. Collective. Returns the change of the global particle count.
+  std::int64_t exchange_particles(double t, Column<Vec<D>>* transport, const Comm& comm) {
     parents_.clear();
     parent_zone_.clear();
     doomed_.clear();
@@ -148,7 +150,7 @@ class OpenBoundaries {
       s_.x[i] -= zones_[z - 1u].length() * zones_[z - 1u].normal();
     }
     for (std::size_t b = 0; b < zones_.size(); ++b) through_[b] += tally_[b];
-    set_prescribed_velocities(t, nullptr);
+    set_prescribed_velocities(t, transport);
     return totals.created - totals.deleted;
   }
 

@@ -64,7 +64,7 @@ OpenBoundaryZone<D>::OpenBoundaryZone(const v1::Case& c, int index, std::uint16_
   // buffer. At the face itself the mean would half be made by the buffer's own state, and a
   // pressure outlet's velocity then feeds back on itself (measured: the centre-line speed
   // grew 10% over the last r_c before the outlet).
-  const double sample_depth = kernel_support_factor(c) * dx_;
+  const double sample_depth = kernel_support_radius(c);
   std::vector<double> shape(lanes, 0.0);
   std::vector<bool> open(lanes, true);
   samples_.resize(lanes);

@@ -691,7 +691,8 @@ void Simulation<D, K>::integrate_step(double dt) {
   set_wall_scalars(t_);
   if (open_) {
     Timer tm(timer(OpenBoundaries<D, K>::kName));
-    global_particles_ += open_->exchange_particles(t_, comm_);  // inflows refill, outflows delete
+    // Inflows refill, outflows delete.
+    global_particles_ += open_->exchange_particles(t_, transport_, comm_);
   }
   exchange_and_search();
   compute_density_and_pressure(dt);

@@ -5,8 +5,10 @@
 
 #include <cmath>
 
+#include "solver/boundaries/open_boundaries.h"
 #include "solver/boundaries/open_boundary_zone.h"
 #include "solver/boundaries/particle_ledger.h"
+#include "solver/core/kernel.h"
 #include "tests/support/test_cases.h"
 
 namespace sph {
@@ -49,6 +51,57 @@ TEST(OpenBoundaryZone, ParabolicInflowCarriesExactlyTheMeanFlux) {
   EXPECT_DOUBLE_EQ(out.inner_xi(), 2.0);
   EXPECT_DOUBLE_EQ(out.outer_xi(), 2.2);
   EXPECT_NEAR(out.sample_point(0)[0], 1.85, 1e-12);
+}
+
+TEST(OpenBoundaryZone, SamplePointsLieOneKernelSupportInsideTheFluid) {
+  // r_c = 3 h with h = smoothing_length_ratio dx: the sample's support reaches the face but
+  // not the buffer (at 3 dx with h = 1.3 dx it would reach 0.9 dx into the buffer).
+  auto c = test::load_case("channel_inflow_outflow_2d");  // dx = 0.05, quintic spline
+  c.set_smoothing_length_ratio(1.3);
+  const OpenBoundaryZone<2> in(c, 0, 0, 1.0);
+  EXPECT_NEAR(in.sample_point(3)[0], 3 * 1.3 * 0.05, 1e-12);
+  const OpenBoundaryZone<2> out(c, 1, 0, 1.0);
+  EXPECT_NEAR(out.sample_point(0)[0], 2.0 - 3 * 1.3 * 0.05, 1e-12);
+}
+
+TEST(OpenBoundaries, BufferParticlesMoveWithTheirPrescribedVelocityAsTransportVelocity) {
+  // An inflow buffer particle during the ramp, and a fluid particle crossing the inflow's
+  // inner face (it becomes fluid and a copy refills its lane upstream). After the exchange at
+  // the new time every buffer particle's transport velocity is its new prescribed velocity,
+  // so the transport-velocity stress rho u (u~ - u) of the buffers is zero.
+  auto c = test::load_case("channel_inflow_outflow_2d");  // inflow at x in [-0.2, 0], along +x
+  c.mutable_open_boundaries(0)->set_start_time(0.0);
+  const Comm comm(MPI_COMM_SELF);
+  ParticleStore<2> s;
+  auto& transport = s.add<Vec<2>>("transport_velocity", "test", true);
+  std::vector<OpenBoundaryZone<2>> zones;
+  zones.emplace_back(c, 0, 0, 1.0);
+  const QuinticSpline<2> kernel(c.dx());
+  const std::vector<FluidConstants> fluids(1);
+  OpenBoundaries<2, QuinticSpline<2>> open(s, kernel, std::move(zones), fluids, 0.0025);
+  s.resize(2, 2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    s.kind[i] = Kind::kFluid;
+    s.id[i] = static_cast<ParticleId>(i);
+    open.zone()[i] = 1;
+    s.v[i] = transport[i] = Vec<2>(0.3, 0.0);  // the prescribed velocity of an earlier time
+  }
+  s.x[0] = Vec<2>(-0.1, 0.525);  // stays in the buffer
+  s.x[1] = Vec<2>(0.01, 0.475);  // has crossed x = 0 into the fluid
+  open.ledger().set_next_id(2);
+  const double t = 0.5;  // inside the ramp (over 2 from t = 0)
+  EXPECT_EQ(open.exchange_particles(t, &transport, comm), 1);
+  ASSERT_EQ(s.owned(), 3u);
+  EXPECT_EQ(open.zone()[1], 0);  // the crossing particle is fluid now
+  for (const std::size_t i : {std::size_t{0}, std::size_t{2}}) {
+    const auto& zone = open.zones()[0];
+    const Vec<2> u = zone.speed(zone.lane_of(s.x[i]), t) * zone.normal();
+    EXPECT_GT(u[0], 0.0);
+    EXPECT_NE(u[0], 0.3);
+    EXPECT_EQ(s.v[i], u) << "particle " << i;
+    EXPECT_EQ(transport[i], u) << "particle " << i << ": stale transport velocity";
+  }
+  EXPECT_NEAR(s.x[2][0], 0.01 - 0.2, 1e-15);  // the copy refills the lane upstream
 }
 
 TEST(OpenBoundaryZone, LanesInsideWallsCarryNoFlux) {
