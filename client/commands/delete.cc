@@ -1,4 +1,5 @@
 // sphctl delete JOB
+#include <algorithm>
 #include <cstdio>
 
 #include "cli/exit_codes.h"
@@ -16,7 +17,10 @@ int cmd_delete(const GlobalOptions& g, ArgScanner args) {
   v1::DeleteJobFilesRequest req;
   req.set_job_id(pos[0]);
   v1::DeleteJobFilesResponse resp;
-  const auto status = conn->jobs().DeleteJobFiles(conn->unary_context().get(), req, &resp);
+  // Removing a large job's files on a network filesystem can take minutes: the deadline is
+  // at least 10 minutes.
+  const auto status = conn->jobs().DeleteJobFiles(
+      conn->context(std::max(g.timeout_seconds, 600.0)).get(), req, &resp);
   if (!status.ok()) return report_error(status, "delete " + pos[0], conn->address());
   const v1::Job& job = resp.job();
   if (g.json) {
@@ -29,7 +33,7 @@ int cmd_delete(const GlobalOptions& g, ArgScanner args) {
         job.id().c_str(), format_bytes(static_cast<double>(job.files_deleted_bytes())).c_str(), n,
         n == 1 ? "" : "s", job.id().c_str());
   } else {
-    std::printf("%s: its files were already deleted on %s\n", job.id().c_str(),
+    std::printf("%s: its files were deleted on %s; nothing of them is left\n", job.id().c_str(),
                 format_time_ms(job.files_deleted_unix_ms()).c_str());
   }
   return kOk;

@@ -128,7 +128,7 @@ std::string describe_job(const v1::Job& j) {
   if (j.files_deleted_unix_ms() > 0)
     s += "  files:      deleted " + format_time_ms(j.files_deleted_unix_ms()) + " (" +
          format_bytes(static_cast<double>(j.files_deleted_bytes())) +
-         " freed); the files listed below are gone\n";
+         " freed): its result files and checkpoints no longer exist\n";
   if (j.has_result()) {
     s += "  result:     attempt " + std::to_string(j.result().attempt()) + ", " +
          j.result().output_dir() + "\n";

@@ -223,12 +223,14 @@ grpc::Status JobServiceImpl::FetchResult(grpc::ServerContext* context,
     return invalid_argument("offset", "needs a single file");
   return guarded([&] {
     const v1::Job job = store_.get(id, false);
-    if (job.files_deleted_unix_ms() > 0)
-      return grpc::Status(
-          grpc::StatusCode::FAILED_PRECONDITION,
-          job.id() + "'s files were deleted at " +
-              service::format_unix_seconds(job.files_deleted_unix_ms() / 1000, true) +
-              " (sphctl delete)");
+    const auto deleted = [&] {
+      return grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
+                          job.id() + "'s files were deleted at " +
+                              service::format_unix_seconds(
+                                  store_.get(id, false).files_deleted_unix_ms() / 1000, true) +
+                              " (sphctl delete)");
+    };
+    if (job.files_deleted_unix_ms() > 0) return deleted();
     if (!job.has_result() || job.result().files_size() == 0)
       return grpc::Status(
           grpc::StatusCode::FAILED_PRECONDITION,
@@ -252,6 +254,8 @@ grpc::Status JobServiceImpl::FetchResult(grpc::ServerContext* context,
                             "result file " + f->name() + " " + *problem);
       const auto path = layout_.attempt_dir(job.id(), manifest.attempt()) / f->name();
       std::ifstream in(path, std::ios::binary);
+      // Deleted while this fetch went on: the delete is recorded before the files go.
+      if (!in && store_.get(id, false).files_deleted_unix_ms() > 0) return deleted();
       if (!in) return grpc::Status(grpc::StatusCode::DATA_LOSS, "cannot read " + path.string());
       in.seekg(0, std::ios::end);
       const std::int64_t size = in.tellg();
@@ -295,14 +299,16 @@ grpc::Status JobServiceImpl::DeleteJobFiles(grpc::ServerContext* context,
   return guarded([&] {
     std::lock_guard lock(delete_mu_);
     // A finished job never runs again, so nothing of ours writes into its directory while it
-    // is removed. The removal comes first and the record after it: a removal that fails half
-    // way leaves the job unmarked, and calling again finishes it. Every call removes the
-    // directory, also after the first: a pool cut off from the server may still write there
-    // until it learns that its attempt ended.
+    // is removed. The deletion is recorded before the files go, so that a fetch starting
+    // after this point is refused as "deleted" rather than finding files missing; a removal
+    // that fails half way (permissions) is reported, and calling again finishes it. Every
+    // call removes the directory, also after the first: a pool cut off from the server may
+    // still write there until it learns that its attempt ended.
     const v1::Job job = store_.get_finished(id);
-    RemovedFiles removed;
+    const JobFiles files = measure_job_files(layout_, job.id());
+    auto [updated, now] = store_.record_files_deleted(id, files.bytes, now_unix_ms());
     try {
-      removed = remove_job_files(layout_, job.id());
+      remove_job_files(layout_, job.id());
     } catch (const std::filesystem::filesystem_error& e) {
       service::log_line("%s: deleting its files failed: %s", job.id().c_str(), e.what());
       return grpc::Status(grpc::StatusCode::INTERNAL,
@@ -311,11 +317,9 @@ grpc::Status JobServiceImpl::DeleteJobFiles(grpc::ServerContext* context,
                               "retry): " +
                               e.what());
     }
-    auto [updated, now] = store_.record_files_deleted(id, removed.bytes, now_unix_ms());
-    if (now || removed.files > 0)
+    if (now || files.files > 0)
       service::log_line("%s: deleted %lld files (%lld bytes) in %s", job.id().c_str(),
-                        static_cast<long long>(removed.files),
-                        static_cast<long long>(removed.bytes),
+                        static_cast<long long>(files.files), static_cast<long long>(files.bytes),
                         layout_.job_dir(job.id()).string().c_str());
     *response->mutable_job() = std::move(updated);
     response->set_deleted_now(now);

@@ -8,15 +8,19 @@
 
 namespace sph::server {
 
-struct RemovedFiles {
+struct JobFiles {
   std::int64_t files = 0;
-  std::int64_t bytes = 0;  // sizes of the regular files removed
+  std::int64_t bytes = 0;  // sizes of the regular files
 };
+
+// What lies in the job's directory (nothing when it is missing). Symbolic links are not
+// followed, so nothing outside the directory is counted.
+JobFiles measure_job_files(const ResultLayout& layout, const std::string& job_id);
 
 // Removes the job's directory and everything below it; a missing directory removes nothing.
 // Symbolic links are removed, never followed. Throws std::filesystem::filesystem_error naming
 // the path when something cannot be removed (what was removed before stays removed, and a
 // repeated call goes on from there).
-RemovedFiles remove_job_files(const ResultLayout& layout, const std::string& job_id);
+void remove_job_files(const ResultLayout& layout, const std::string& job_id);
 
 }  // namespace sph::server

@@ -402,7 +402,7 @@ TEST(ServiceApi, DeletingAFinishedJobsFilesFreesItsDiskAndKeepsItsRecord) {
   EXPECT_EQ(again.exit_code, 0) << again.err;
   EXPECT_NE(again.out.find("\"deleted_now\":false"), std::string::npos) << again.out;
   EXPECT_EQ(h.get_job(job.id()).files_deleted_unix_ms(), after.files_deleted_unix_ms());
-  EXPECT_NE(h.sphctl({"delete", job.id()}).out.find("already deleted"), std::string::npos);
+  EXPECT_NE(h.sphctl({"delete", job.id()}).out.find("nothing of them is left"), std::string::npos);
 
   EXPECT_EQ(h.sphctl({"delete", "job-99"}).exit_code, 4);
   EXPECT_EQ(h.sphctl({"delete", "nonsense"}).exit_code, 3);  // INVALID_ARGUMENT

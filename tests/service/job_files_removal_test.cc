@@ -34,16 +34,18 @@ TEST(JobFilesRemoval, RemovesEveryAttemptAndCountsOnlyItsOwnFiles) {
   fs::create_symlink(root / "elsewhere" / "precious.h5", job / "2" / "linked_file.h5");
   write(layout.job_dir("job-70") / "1" / "result.h5", 10);  // a neighbour with a similar name
 
-  const RemovedFiles removed = remove_job_files(layout, "job-7");
-  EXPECT_EQ(removed.files, 4);
-  EXPECT_EQ(removed.bytes, 1000 + 300 + 1500 + 20);
+  const JobFiles measured = measure_job_files(layout, "job-7");
+  EXPECT_EQ(measured.files, 4);
+  EXPECT_EQ(measured.bytes, 1000 + 300 + 1500 + 20);
+  remove_job_files(layout, "job-7");
   EXPECT_FALSE(fs::exists(fs::symlink_status(job)));
   EXPECT_EQ(fs::file_size(root / "elsewhere" / "precious.h5"), 5000u);
   EXPECT_TRUE(fs::exists(layout.job_dir("job-70") / "1" / "result.h5"));
 
-  const RemovedFiles again = remove_job_files(layout, "job-7");
+  const JobFiles again = measure_job_files(layout, "job-7");
   EXPECT_EQ(again.files, 0);
   EXPECT_EQ(again.bytes, 0);
+  remove_job_files(layout, "job-7");  // nothing left to remove is no error
   fs::remove_all(root);
 }
 

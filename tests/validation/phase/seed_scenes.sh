@@ -13,8 +13,9 @@
 # SPHD_PAPER=2 also the powder scenes at the paper's resolution (2D: 53k particles, about
 # 4 h on two idle cores; 3D: 113k particles, about 17 h on two), meant to be continued over
 # several invocations (keep OUT_DIR outside a work tree that is cleaned between them).
-# SPHD_SCENES="powder_2d ..." runs (and renders) only the named scenes: gastric_04,
-# powder_2d_coarse, powder_3d_coarse, powder_slice_2d, gastric_01, powder_2d, powder_3d.
+# SPHD_SCENES="powder_2d ..." runs (and renders) only the named scenes, paper-resolution ones
+# included whatever SPHD_PAPER says: gastric_04, powder_2d_coarse, powder_3d_coarse,
+# powder_slice_2d, gastric_01, powder_2d, powder_3d.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
 build=${1:-$root/build}
@@ -25,6 +26,15 @@ mkdir -p "$out"
 selected() {  # name: whether SPHD_SCENES (when set) names it
   [ -z "${SPHD_SCENES:-}" ] || [[ " $SPHD_SCENES " == *" $1 "* ]]
 }
+scenes="gastric_04 powder_2d_coarse powder_3d_coarse powder_slice_2d gastric_01 powder_2d powder_3d"
+for name in ${SPHD_SCENES:-}; do
+  if [[ " $scenes " != *" $name "* ]]; then
+    echo "seed_scenes.sh: SPHD_SCENES: unknown scene '$name' (scenes: $scenes)" >&2
+    exit 2
+  fi
+done
+paper=${SPHD_PAPER:-0}
+if [ -n "${SPHD_SCENES:-}" ]; then paper=2; fi  # a named scene runs; run() skips the others
 run() {  # name case-file [sed expression]
   local name=$1 case=$2 edit=${3:-}
   if ! selected "$name"; then return; fi
@@ -57,10 +67,10 @@ run gastric_04 "$root/cases/gastric_boluses_2d.textproto" 's/^dx: 0.2$/dx: 0.4/'
 run powder_2d_coarse "$root/cases/powder_grains_2d_coarse.textproto"
 run powder_3d_coarse "$root/cases/powder_melting_3d_coarse.textproto"
 run powder_slice_2d "$root/cases/powder_melting_slice_2d.textproto"
-if [ "${SPHD_PAPER:-0}" -ge 1 ]; then
+if [ "$paper" -ge 1 ]; then
   run gastric_01 "$root/cases/gastric_boluses_2d.textproto" 's/^dx: 0.2$/dx: 0.1/'
 fi
-if [ "${SPHD_PAPER:-0}" -ge 2 ]; then
+if [ "$paper" -ge 2 ]; then
   run powder_2d "$root/cases/powder_grains_2d.textproto"
   run powder_3d "$root/cases/powder_melting_3d.textproto"
 fi
