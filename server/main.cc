@@ -22,6 +22,7 @@
 #include "server/events/event_feed.h"
 #include "server/lease_reaper.h"
 #include "server/results/result_layout.h"
+#include "server/results/results_owner.h"
 #include "server/store/database_lock.h"
 #include "server/store/job_store.h"
 
@@ -60,6 +61,7 @@ int run(const ServerConfig& config) {
   const auto lease_ms = static_cast<std::int64_t>(config.lease_seconds * 1000);
   store::JobStore store(config.db_path, layout,
                         store::StoreOptions{lease_ms, config.max_lost_leases}, feed);
+  claim_results_directory(layout, store.database_id(), store.has_jobs());
   // Pools could not report while the server was down; they get a full lease to reconnect.
   store.renew_all_leases(now_unix_ms());
 

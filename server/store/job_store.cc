@@ -363,6 +363,20 @@ v1::Job JobStore::cancel(std::int64_t id, const std::string& reason, std::int64_
   return j;
 }
 
+std::string JobStore::database_id() {
+  std::lock_guard lock(mu_);
+  auto st = db_.prepare("SELECT value FROM meta WHERE key = 'database_id'");
+  if (!st.step()) throw SqliteError(SQLITE_CORRUPT, "the database has no database_id");
+  return st.text(0);
+}
+
+bool JobStore::has_jobs() {
+  std::lock_guard lock(mu_);
+  auto st = db_.prepare("SELECT EXISTS (SELECT 1 FROM jobs)");
+  st.step();
+  return st.int64(0) != 0;
+}
+
 v1::Job JobStore::get_finished(std::int64_t id) {
   std::lock_guard lock(mu_);
   v1::Job j = read_job(id, false, false);

@@ -83,6 +83,11 @@ class JobStore {
   // running job a full lease from now.
   void renew_all_leases(std::int64_t now_ms);
 
+  // A random identity made with the database (schema version 4).
+  std::string database_id();
+  // Whether any job was ever submitted to this database.
+  bool has_jobs();
+
   std::vector<v1::JobEvent> events_after(std::int64_t id, std::int64_t after, int limit);
   v1::JobState state(std::int64_t id);
 

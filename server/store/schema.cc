@@ -7,7 +7,7 @@ namespace sph::server::store {
 namespace {
 
 // Never edit a migration that has shipped; append a new one.
-constexpr std::array<const char*, 3> kMigrations = {
+constexpr std::array<const char*, 4> kMigrations = {
     // 1: jobs, attempts and the append-only event log.
     R"sql(
 CREATE TABLE jobs (
@@ -71,6 +71,12 @@ ALTER TABLE jobs ADD COLUMN study BLOB;
     R"sql(
 ALTER TABLE jobs ADD COLUMN files_deleted_ms INTEGER;
 ALTER TABLE jobs ADD COLUMN files_deleted_bytes INTEGER;
+)sql",
+    // 4: an identity of the database, written into the results directory it uses, so that a
+    // new database (whose job ids restart at job-1) is never pointed at another one's results.
+    R"sql(
+CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL) STRICT;
+INSERT INTO meta (key, value) VALUES ('database_id', lower(hex(randomblob(16))));
 )sql",
 };
 

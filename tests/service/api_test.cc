@@ -116,6 +116,27 @@ TEST(ServiceApi, ASecondServerOnTheSameDatabaseIsRefused) {
   EXPECT_TRUE(h.server().running());
 }
 
+TEST(ServiceApi, ANewDatabaseIsNotGivenAnotherDatabasesResults) {
+  // Job ids restart at job-1 in a new database: pointed at the old results directory it
+  // would write over the old job-1's files.
+  ServiceHarness h;
+  h.start_server();
+  h.submit_text(small_case());
+  claim(h);  // the attempt folder results/job-1/1
+  auto fresh = Process::spawn({SPHD_SERVER_BIN, "--address", "127.0.0.1:0", "--db",
+                               h.dir() + "/fresh.db", "--results", h.dir() + "/results"},
+                              h.dir() + "/fresh.log");
+  EXPECT_EQ(fresh.wait(10s).value_or(-1), 1);
+  EXPECT_NE(read_file(h.dir() + "/fresh.log").find("belongs to another database"),
+            std::string::npos)
+      << read_file(h.dir() + "/fresh.log");
+  EXPECT_TRUE(fs::exists(h.dir() + "/results/job-1/1"));
+  // The database that wrote them starts again on them (a restart).
+  h.server().kill_all();
+  h.start_server();
+  EXPECT_EQ(h.get_job("job-1").state(), v1::JOB_STATE_RUNNING);
+}
+
 TEST(ServiceApi, BadCasesAreRejectedNamingTheFieldAndNothingIsStored) {
   ServiceHarness h;
   h.start_server(ServerSettings().particle_limit(1000));

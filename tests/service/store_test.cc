@@ -291,8 +291,8 @@ TEST_F(StoreTest, RefusesADatabaseFromANewerRelease) {
 }
 
 TEST_F(StoreTest, MigratesAVersion1DatabaseAndKeepsStudiesWithTheirJobs) {
-  // A database of the first release: no jobs.study column (migration 2) and no record of
-  // deleted files (migration 3), user_version 1.
+  // A database of the first release: no jobs.study column (migration 2), no record of
+  // deleted files (migration 3) and no identity (migration 4), user_version 1.
   const auto old_job = submit("before");
   store_.reset();
   {
@@ -300,16 +300,19 @@ TEST_F(StoreTest, MigratesAVersion1DatabaseAndKeepsStudiesWithTheirJobs) {
     raw.exec("ALTER TABLE jobs DROP COLUMN study");
     raw.exec("ALTER TABLE jobs DROP COLUMN files_deleted_ms");
     raw.exec("ALTER TABLE jobs DROP COLUMN files_deleted_bytes");
+    raw.exec("DROP TABLE meta");
     raw.exec("PRAGMA user_version = 1");
   }
   open();  // migrates to the current version
-  EXPECT_EQ(current_schema_version(), 3);
+  EXPECT_EQ(current_schema_version(), 4);
   {
     Database raw(db());
     auto st = raw.prepare("PRAGMA user_version");
     st.step();
-    EXPECT_EQ(st.int64(0), 3);
+    EXPECT_EQ(st.int64(0), 4);
   }
+  EXPECT_EQ(store_->database_id().size(), 32u);
+  EXPECT_TRUE(store_->has_jobs());
   const v1::Job before = store_->get(old_job, true);
   EXPECT_EQ(before.state(), v1::JOB_STATE_QUEUED);
   EXPECT_FALSE(before.has_study());
