@@ -118,12 +118,13 @@ CaseEstimate estimate_case(const v1::Case& c) {
   if (c.time().max_steps() > 0)
     e.steps = std::min(e.steps, static_cast<double>(c.time().max_steps()));
 
-  // Storage: particle columns (~40 doubles in 3D) plus a neighbour index per pair, and
-  // about 15% ghost copies.
+  // Storage: particle columns (~40 doubles in 3D) plus a neighbour index per pair and, with
+  // the pair kernel table, r, W and dW per pair; about 15% ghost copies.
   const double k = rc_over_dx;
   const double neighbours =
       d == 2 ? std::numbers::pi * k * k : 4.0 / 3.0 * std::numbers::pi * k * k * k;
-  const double per_particle = (d == 2 ? 200.0 : 280.0) + 4.0 * neighbours;
+  const double per_pair = c.pair_kernel_storage() == v1::PAIR_KERNEL_STREAM ? 4.0 : 28.0;
+  const double per_particle = (d == 2 ? 200.0 : 280.0) + per_pair * neighbours;
   e.bytes = 1.15 * e.total() * per_particle;
   return e;
 }

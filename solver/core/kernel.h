@@ -4,6 +4,11 @@
 //    Fuchs 2021 Remark 7.
 //  - Wendland C2 (Wendland 1995), kappa = 2.
 // Both are normalised to unit integral in D dimensions. dW(r) is dW/dr (<= 0).
+// evaluate() gives W and dW of many distances at once without branches, so that the loop
+// vectorises; each piece beyond its range adds an exact zero, so the values equal W() and dW()
+// to the bit (tests/unit/kernel_test.cc checks it).
+#include <algorithm>
+#include <cstddef>
 #include <numbers>
 
 namespace sph {
@@ -31,6 +36,22 @@ class QuinticSpline {
     if (q < 2.0) w += 30.0 * b * b * b * b;
     if (q < 1.0) w -= 75.0 * c * c * c * c;
     return sigma_ * inv_h_ * w;
+  }
+  void evaluate(std::size_t n, const double* r, double* w_out, double* dw_out) const {
+    const double sw = sigma_, sd = sigma_ * inv_h_, inv_h = inv_h_;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double q = r[k] * inv_h;
+      const double a = std::max(3.0 - q, 0.0), b = std::max(2.0 - q, 0.0),
+                   c = std::max(1.0 - q, 0.0);
+      double w = a * a * a * a * a;
+      w -= 6.0 * b * b * b * b * b;
+      w += 15.0 * c * c * c * c * c;
+      double d = -5.0 * a * a * a * a;
+      d += 30.0 * b * b * b * b;
+      d -= 75.0 * c * c * c * c;
+      w_out[k] = sw * w;
+      dw_out[k] = sd * d;
+    }
   }
 
  private:
@@ -66,6 +87,16 @@ class WendlandC2 {
     if (q >= 2.0) return 0.0;
     const double a = 1.0 - 0.5 * q;
     return sigma_ * inv_h_ * (-5.0 * q) * a * a * a;
+  }
+  void evaluate(std::size_t n, const double* r, double* w_out, double* dw_out) const {
+    const double sw = sigma_, sd = sigma_ * inv_h_, inv_h = inv_h_;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double q = r[k] * inv_h;
+      const double a = std::max(1.0 - 0.5 * q, 0.0);
+      const double w = sw * a * a * a * a * (2.0 * q + 1.0), d = sd * (-5.0 * q) * a * a * a;
+      w_out[k] = q < 2.0 ? w : 0.0;  // selects, not branches: dW() is +0 beyond, this -0
+      dw_out[k] = q < 2.0 ? d : 0.0;
+    }
   }
 
  private:

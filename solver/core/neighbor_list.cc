@@ -11,6 +11,7 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
                             const CellBox<D>& box, double rc, const ContactQuery* contact,
                             bool rigid_all) {
   box_ = box;
+  ++generation_;
   // Half cells: the box's cells split in two along every axis. The 5^D half cells around a
   // particle cover (2.5 r_c)^D instead of the (3 r_c)^D of the 3^D cells, 42% fewer candidates
   // in 3D before the half cells that lie wholly beyond r_c are left out (below). They are global

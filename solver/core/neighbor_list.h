@@ -34,6 +34,10 @@ class NeighborList {
              const ContactQuery* contact = nullptr, bool rigid_all = false);
 
   const std::uint32_t* begin(std::size_t i) const { return nbr_.data() + start_[i]; }
+  // Position of particle i's list in the storage (tables parallel to the lists use it).
+  std::size_t first(std::size_t i) const { return start_[i]; }
+  // Counts the builds, so a table made from one list can tell it is stale.
+  std::uint64_t generation() const { return generation_; }
   const std::uint32_t* end(std::size_t i) const { return nbr_.data() + start_[i + 1]; }
   // For wall and rigid particles: the end of the fluid neighbours, which come first.
   const std::uint32_t* fluid_end(std::size_t i) const { return nbr_.data() + fluid_end_[i]; }
@@ -83,6 +87,7 @@ class NeighborList {
   std::vector<std::uint32_t> start_, fluid_end_, others_;
   std::vector<std::uint32_t> nbr_;  // storage; the first pairs_ entries are the lists
   std::size_t pairs_ = 0;
+  std::uint64_t generation_ = 0;
   std::vector<std::uint32_t> contact_start_, contact_nbr_;
   double min_contact_ = 0;
 };

@@ -14,6 +14,7 @@
 #include <cstdint>
 
 #include "solver/core/neighbor_list.h"
+#include "solver/core/pair_kernel.h"
 
 namespace sph {
 
@@ -24,9 +25,9 @@ struct SolidFractionScan {
 
 // `wall_index` (per particle, may be null without walls) names the wall of a wall particle,
 // `body_index` (may be null without bodies) the body of a rigid particle.
-template <int D, class K>
+template <int D>
 SolidFractionScan solid_fraction(const ParticleStore<D>& s, const NeighborList<D>& nl,
-                                 const K& kernel, double dummy_volume,
+                                 const PairKernel<D>& pk, double dummy_volume,
                                  const std::uint16_t* wall_index, const std::int32_t* body_index) {
   SolidFractionScan out;
   // The objects around one particle: a few at most (a wall, a body, a second body); more
@@ -37,9 +38,14 @@ SolidFractionScan solid_fraction(const ParticleStore<D>& s, const NeighborList<D
   for (std::size_t i = 0; i < s.owned(); ++i) {
     if (s.kind[i] != Kind::kFluid) continue;
     int used = 0;
-    for (const std::uint32_t* jp = nl.begin(i); jp != nl.end(i); ++jp) {
+    // Most fluid particles have no solid neighbour: the values are asked for (evaluated, with
+    // PAIR_KERNEL_STREAM) only at the first one.
+    const double* w = nullptr;
+    const std::uint32_t* list = nl.begin(i);
+    for (const std::uint32_t* jp = list; jp != nl.end(i); ++jp) {
       const std::uint32_t j = *jp;
       if (s.kind[j] == Kind::kFluid) continue;
+      if (!w) w = pk.of(nl, i).w;
       // Walls are keys >= 0, bodies < 0.
       const std::int64_t k = s.kind[j] == Kind::kWall ? (wall_index ? wall_index[j] : 0)
                                                       : -1 - (body_index ? body_index[j] : 0);
@@ -54,7 +60,7 @@ SolidFractionScan solid_fraction(const ParticleStore<D>& s, const NeighborList<D
           slot = kSlots - 1;
         }
       }
-      sum[static_cast<std::size_t>(slot)] += kernel.W((s.x[i] - s.x[j]).norm());
+      sum[static_cast<std::size_t>(slot)] += w[jp - list];
     }
     for (int slot = 0; slot < used; ++slot) {
       const double phi = dummy_volume * sum[static_cast<std::size_t>(slot)];

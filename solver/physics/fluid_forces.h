@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "solver/core/neighbor_list.h"
+#include "solver/core/pair_kernel.h"
 #include "solver/physics/fluid_table.h"
 
 namespace sph {
@@ -33,6 +34,7 @@ namespace sph {
 template <int D>
 struct FluidForceInputs {
   const std::vector<FluidConstants>* fluids = nullptr;
+  const PairKernel<D>* pairs = nullptr;               // kernel values of the list's pairs
   Vec<D> body = Vec<D>::Zero();                       // body force per unit mass on fluid particles
   double wall_volume = 0;                             // reference volume of a dummy particle (dx^d)
   double h = 0;                                       // smoothing length
@@ -121,12 +123,14 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
     Vec<D> dui = Vec<D>::Zero();
     if constexpr (kTransport) dui = (*in.transport)[i] - vi;
     const DummyPair<D, kViscous, kTransport> dummy{fi, rhoi, pi, Vi2, vi, dui};
-    for (const std::uint32_t* jp = nl.begin(i); jp != nl.end(i); ++jp) {
+    const PairValues g = in.pairs->of(nl, i);
+    const double *g_r = g.r, *g_w = g.w, *g_dw = g.dw;
+    for (const std::uint32_t* jp = nl.begin(i); jp != nl.end(i); ++jp, ++g_r, ++g_w, ++g_dw) {
       const std::uint32_t j = *jp;
       const Vec<D> rij = xi - x[j];
-      const double r = rij.norm();
+      const double r = *g_r;
       if (r == 0.0) continue;
-      const double dwdr = k.dW(r), dwdr_r = dwdr / r;
+      const double dwdr = *g_dw, dwdr_r = dwdr / r;
       const Vec<D> gradW = dwdr_r * rij;
       if (kind[j] == Kind::kFluid) {
         const double rhoj = rho[j], Vj = V[j];
@@ -139,7 +143,7 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
         }
         if constexpr (kTransport) {
           acc_bg -= s2 * gradW;
-          sigma += Vj * k.W(r);
+          sigma += Vj * *g_w;
           grad_sum += Vj * gradW;
           const Vec<D> duj = (*in.transport)[j] - v[j];
           // 1/2 (A_i + A_j) . grad W with A = rho u (u~ - u)^T.
@@ -162,7 +166,7 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
                      in.free_slip && (*in.free_slip)[j], in.wall_volume, s2);
         if constexpr (kTransport) {
           acc_bg -= s2 * gradW;
-          sigma += in.wall_volume * k.W(r);
+          sigma += in.wall_volume * *g_w;
           grad_sum += in.wall_volume * gradW;
         }
       }
@@ -180,19 +184,21 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
 // The force on each owned rigid particle from its fluid neighbours (Fuchs 2021 eq. 19):
 // f_r = -sum_i m_i a_ir with a_ir exactly the term fluid particle i receives from r.
 template <int D, class K, bool kViscous, bool kArtVisc, bool kTransport>
-void compute_rigid_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, const K& k,
+void compute_rigid_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, const K& /*kernel*/,
                             const FluidForceInputs<D>& in) {
   const auto& fl = *in.fluids;
   Column<Vec<D>>& force = *in.rigid_force;
   for (std::size_t r = 0; r < s.owned(); ++r) {
     if (s.kind[r] != Kind::kRigid) continue;
     Vec<D> f = Vec<D>::Zero();
-    for (const std::uint32_t* ip = nl.begin(r); ip != nl.fluid_end(r); ++ip) {
+    const PairValues g = in.pairs->of(nl, r);
+    const double *g_r = g.r, *g_dw = g.dw;
+    for (const std::uint32_t* ip = nl.begin(r); ip != nl.fluid_end(r); ++ip, ++g_r, ++g_dw) {
       const std::uint32_t i = *ip;  // a fluid particle
       const Vec<D> rij = s.x[i] - s.x[r];
-      const double dist = rij.norm();
+      const double dist = *g_r;
       if (dist == 0.0) continue;
-      const double dwdr = k.dW(dist);
+      const double dwdr = *g_dw;
       const Vec<D> gradW = (dwdr / dist) * rij;
       const FluidConstants& fi = fl[s.material[i]];
       const double Vi = s.m[i] / s.rho[i];

@@ -47,6 +47,7 @@
 
 #include "case/time_function.h"
 #include "solver/core/neighbor_list.h"
+#include "solver/core/pair_kernel.h"
 
 namespace sph {
 
@@ -77,17 +78,15 @@ struct DiffusionMaterial {
 // The largest ratio (T_a - T_w)/(T_a - T_D) a wall pair may carry (see above).
 inline constexpr double kMirrorLimit = 3.0;
 
-template <int D, class K>
+template <int D>
 class ScalarDiffusion {
  public:
   // `name`: the particle column ("temperature" or "concentration"); materials indexed like
   // the particles' material; wall_values[k]: schedule of wall k (absent = insulated).
-  ScalarDiffusion(ParticleStore<D>& s, const K& kernel, const std::string& name,
-                  std::vector<DiffusionMaterial> mats,
+  ScalarDiffusion(ParticleStore<D>& s, const std::string& name, std::vector<DiffusionMaterial> mats,
                   std::vector<std::optional<TimeFunction>> wall_values,
                   std::vector<int> wall_material, double wall_volume, double source_per_volume)
       : s_(s),
-        k_(kernel),
         value_(s.template add<double>(name, name, true)),
         mats_(std::move(mats)),
         walls_(std::move(wall_values)),
@@ -117,7 +116,7 @@ class ScalarDiffusion {
 
   // Mirror values of the owned Dirichlet wall particles at time t from their fluid and rigid
   // neighbours; the caller then refreshes the ghosts of values().
-  void extrapolate_walls(const NeighborList<D>& nl, double t,
+  void extrapolate_walls(const NeighborList<D>& nl, const PairKernel<D>& pk, double t,
                          const Column<std::uint16_t>& wall_index) {
     for (std::size_t k = 0; k < walls_.size(); ++k)
       if (walls_[k]) targets_[k] = walls_[k]->value(t);
@@ -126,8 +125,10 @@ class ScalarDiffusion {
       const auto& f = walls_[wall_index[w]];
       if (!f) continue;
       double sw = 0, sv = 0;
-      for (const std::uint32_t* bp = nl.begin(w); bp != nl.end(w); ++bp) {
-        const double W = k_.W((s_.x[w] - s_.x[*bp]).norm());
+      const PairValues g = pk.of(nl, w);
+      const double* g_w = g.w;
+      for (const std::uint32_t* bp = nl.begin(w); bp != nl.end(w); ++bp, ++g_w) {
+        const double W = *g_w;
         sw += W;
         sv += W * value_[*bp];
       }
@@ -143,10 +144,10 @@ class ScalarDiffusion {
 
   // Advances the owned fluid and rigid particles by dt. `wall_index` tells which wall a wall
   // particle belongs to (ghosts included).
-  void run(const NeighborList<D>& nl, double dt, const Column<std::uint16_t>& wall_index) {
+  void run(const NeighborList<D>& nl, const PairKernel<D>& pk, double dt,
+           const Column<std::uint16_t>& wall_index) {
     gather(wall_index);
     const std::size_t n = s_.owned(), nm = mats_.size(), nc = nm + walls_.size();
-    const Vec<D>* x = s_.x.data();
     const double* value = value_.data();
     const std::uint16_t* cls = class_.data();
     const double* vol = volume_.data();
@@ -159,10 +160,11 @@ class ScalarDiffusion {
       if (ma.fixed) continue;
       const double rho_a = ka == Kind::kFluid ? s_.rho[a] : ma.density;
       const double* coef = pair_coefficient_.data() + mat_a * nc;
-      const Vec<D> xa = x[a];
       const double va = value[a];
       double sum = 0;
-      for (const std::uint32_t* bp = nl.begin(a); bp != nl.end(a); ++bp) {
+      const PairValues g = pk.of(nl, a);
+      const double *g_r = g.r, *g_dw = g.dw;
+      for (const std::uint32_t* bp = nl.begin(a); bp != nl.end(a); ++bp, ++g_r, ++g_dw) {
         const std::uint32_t b = *bp;
         const std::uint16_t cb = cls[b];
         const double c = coef[cb];  // 0 for insulated walls and non-conducting pairs
@@ -172,9 +174,9 @@ class ScalarDiffusion {
           const double towards = kMirrorLimit * (va - targets_[cb - nm]);
           diff = std::clamp(diff, std::min(0.0, towards), std::max(0.0, towards));
         }
-        const double r = (xa - x[b]).norm();
+        const double r = *g_r;
         if (r == 0) continue;
-        sum += vol[b] * c * diff / r * k_.dW(r);
+        sum += vol[b] * c * diff / r * *g_dw;
       }
       rate_[a] = (sum + source_) / rho_a;  // power per unit mass
     }
@@ -194,7 +196,6 @@ class ScalarDiffusion {
 
  private:
   ParticleStore<D>& s_;
-  const K& k_;
   Column<double>& value_;
   std::vector<DiffusionMaterial> mats_;
   std::vector<std::optional<TimeFunction>> walls_;

@@ -20,17 +20,17 @@
 #include <vector>
 
 #include "solver/core/neighbor_list.h"
+#include "solver/core/pair_kernel.h"
 #include "solver/physics/fluid_table.h"
 
 namespace sph {
 
-template <int D, class K>
+template <int D>
 class WallBoundary {
  public:
   static constexpr const char* kName = "wall_boundary";
-  WallBoundary(ParticleStore<D>& s, const K& kernel, const std::vector<FluidConstants>& fluids)
+  WallBoundary(ParticleStore<D>& s, const std::vector<FluidConstants>& fluids)
       : s_(s),
-        k_(kernel),
         fluids_(fluids),
         vext_(s.template add<Vec<D>>("wall_noslip_velocity", kName, false)),
         wall_fluid_(s.template add<std::uint16_t>("wall_fluid_material", kName, false)) {
@@ -57,7 +57,8 @@ class WallBoundary {
 
   // body: acceleration acting on the fluid; wall_accel: per-particle wall acceleration or
   // nullptr for walls at rest.
-  void run(const NeighborList<D>& nl, const Vec<D>& body, const Column<Vec<D>>* wall_accel) {
+  void run(const NeighborList<D>& nl, const PairKernel<D>& pk, const Vec<D>& body,
+           const Column<Vec<D>>* wall_accel) {
     // A scene of bodies and walls without any fluid material (contact only) has no fluid for
     // the condition to serve, and no fluid whose reference density a lone wall could take.
     if (first_fluid_ < 0) return;
@@ -68,10 +69,12 @@ class WallBoundary {
       int mat = -1;
       bool mixed = false;
       const Vec<D> xw = s_.x[w];
-      for (const std::uint32_t* fp = nl.begin(w); fp != nl.fluid_end(w); ++fp) {
+      const PairValues g = pk.of(nl, w);
+      const double* g_w = g.w;
+      for (const std::uint32_t* fp = nl.begin(w); fp != nl.fluid_end(w); ++fp, ++g_w) {
         const std::uint32_t f = *fp;
         const Vec<D> rwf = xw - s_.x[f];
-        const double W = k_.W(rwf.norm());
+        const double W = *g_w;
         sw += W;
         sp += s_.p[f] * W;
         srho += (s_.rho[f] * W) * rwf;
@@ -102,11 +105,13 @@ class WallBoundary {
         continue;
       }
       // Per fluid: eq. 27 over that fluid's particles only.
-      for (const std::uint32_t* fp = nl.begin(w); fp != nl.fluid_end(w); ++fp) {
+      const PairValues g2 = pk.of(nl, w);
+      const double* g2_w = g2.w;
+      for (const std::uint32_t* fp = nl.begin(w); fp != nl.fluid_end(w); ++fp, ++g2_w) {
         const std::uint32_t f = *fp;
         const std::size_t mf = s_.material[f];
         const Vec<D> rwf = xw - s_.x[f];
-        const double W = k_.W(rwf.norm());
+        const double W = *g2_w;
         msw_[mf] += W;
         msp_[mf] += s_.p[f] * W;
         msrho_[mf] += (s_.rho[f] * W) * rwf;
@@ -139,7 +144,6 @@ class WallBoundary {
 
  private:
   ParticleStore<D>& s_;
-  const K& k_;
   const std::vector<FluidConstants>& fluids_;
   Column<Vec<D>>& vext_;
   Column<std::uint16_t>& wall_fluid_;

@@ -25,6 +25,7 @@
 #include "solver/bodies/spring_dashpot_contact.h"
 #include "solver/boundaries/open_boundaries.h"
 #include "solver/core/neighbor_list.h"
+#include "solver/core/pair_kernel.h"
 #include "solver/core/particle_store.h"
 #include "solver/diagnostics/conservation.h"
 #include "solver/diagnostics/probes.h"
@@ -152,6 +153,9 @@ class Simulation {
   Halo<D> halo_;
   ParticleStore<D> s_;
   NeighborList<D> nl_;
+  PairKernel<D> pk_{c_.pair_kernel_storage() == v1::PAIR_KERNEL_STREAM
+                        ? PairKernel<D>::Storage::kStream
+                        : PairKernel<D>::Storage::kTable};  // the kernel of nl_'s pairs
   GuardSettings guards_;
   OutputSchedule schedule_;
   ResultFile result_;
@@ -159,14 +163,14 @@ class Simulation {
   // Units (present only when the case needs them).
   std::optional<DensitySummation<D, K>> summation_;
   std::optional<ContinuityDensity<D, K>> continuity_;
-  std::optional<WallBoundary<D, K>> walls_;
+  std::optional<WallBoundary<D>> walls_;
   std::optional<WallMotion<D>> wall_motion_;
   std::optional<Probes<D, K>> probes_;
   std::optional<FluidForces<D, K>> forces_;
   std::optional<BodyForce<D>> body_;
   std::optional<RigidBodies<D>> bodies_;
-  std::optional<ScalarDiffusion<D, K>> heat_;           // Fuchs 2021 eq. 28
-  std::optional<ScalarDiffusion<D, K>> concentration_;  // Fuchs 2021 Remark 4
+  std::optional<ScalarDiffusion<D>> heat_;           // Fuchs 2021 eq. 28
+  std::optional<ScalarDiffusion<D>> concentration_;  // Fuchs 2021 Remark 4
   Column<std::uint16_t>* wall_index_ = nullptr;
   std::optional<SpringDashpotContact<D>> contact_;
   std::optional<PhaseTransitions<D>> phase_;  // Fuchs 2021 eq. 29

@@ -86,8 +86,8 @@ void Simulation<D, K>::build_units() {
     continuity_.emplace(s_, kernel_, wall_volume_, tvf ? *transport_ : s_.v);
   if (c_.walls_size() > 0) {
     wall_index_ = &s_.template add<std::uint16_t>("wall_index", "walls", true);
-    walls_.emplace(s_, kernel_, fluids_);
-    units_.push_back(WallBoundary<D, K>::kName);
+    walls_.emplace(s_, fluids_);
+    units_.push_back(WallBoundary<D>::kName);
     bool any_slip = false, any_motion = false;
     std::vector<MotionPath> paths;
     for (const auto& w : c_.walls()) {
@@ -96,8 +96,7 @@ void Simulation<D, K>::build_units() {
       any_motion = any_motion || !paths.back().is_static();
     }
     if (any_slip) {
-      free_slip_ =
-          &s_.template add<std::uint8_t>("wall_free_slip", WallBoundary<D, K>::kName, true);
+      free_slip_ = &s_.template add<std::uint8_t>("wall_free_slip", WallBoundary<D>::kName, true);
     }
     if (any_motion) {
       wall_motion_.emplace(s_, std::move(paths), *wall_index_);
@@ -126,8 +125,8 @@ void Simulation<D, K>::build_units() {
     units_.push_back(RigidBodies<D>::kName);
     units_.push_back("rigid_coupling");
     if (!walls_) {  // rigid particles use the wall condition too
-      walls_.emplace(s_, kernel_, fluids_);
-      units_.push_back(WallBoundary<D, K>::kName);
+      walls_.emplace(s_, fluids_);
+      units_.push_back(WallBoundary<D>::kName);
     }
     if (c_.has_contact()) {
       const auto& k = c_.contact();
@@ -261,7 +260,7 @@ void Simulation<D, K>::build_transport_units() {
       walls.push_back(w.has_temperature()
                           ? std::optional<TimeFunction>(TimeFunction(w.temperature().value()))
                           : std::nullopt);
-    heat_.emplace(s_, kernel_, "temperature", m, walls, wall_material, wall_volume_,
+    heat_.emplace(s_, "temperature", m, walls, wall_material, wall_volume_,
                   c_.thermal().volumetric_heat_source());
     units_.push_back("heat_conduction");
     result_.add_field(heat_->values());
@@ -284,8 +283,7 @@ void Simulation<D, K>::build_transport_units() {
       walls.push_back(w.has_concentration()
                           ? std::optional<TimeFunction>(TimeFunction(w.concentration().value()))
                           : std::nullopt);
-    concentration_.emplace(s_, kernel_, "concentration", m, walls, wall_material, wall_volume_,
-                           0.0);
+    concentration_.emplace(s_, "concentration", m, walls, wall_material, wall_volume_, 0.0);
     units_.push_back("concentration_diffusion");
     result_.add_field(concentration_->values());
     for (const char* n : {"concentration_min", "concentration_max", "species_mass"})
@@ -393,18 +391,18 @@ void Simulation<D, K>::set_wall_scalars(double t) {
 template <int D, class K>
 void Simulation<D, K>::transport_scalars(double dt) {
   if (dt <= 0) return;
-  for (ScalarDiffusion<D, K>* unit :
+  for (ScalarDiffusion<D>* unit :
        {heat_ ? &*heat_ : nullptr, concentration_ ? &*concentration_ : nullptr}) {
     if (!unit) continue;
     Timer tm(
         timer(unit == (heat_ ? &*heat_ : nullptr) ? "heat_conduction" : "concentration_diffusion"));
     if (unit->has_dirichlet_walls()) {
       // The mirror values use this step's fluid values at the new positions.
-      unit->extrapolate_walls(nl_, t_, *wall_index_);
+      unit->extrapolate_walls(nl_, pk_, t_, *wall_index_);
       Timer th(timer("halo_exchange"));
       halo_.update(s_, {&unit->values()});
     }
-    unit->run(nl_, dt, *wall_index_or_empty());
+    unit->run(nl_, pk_, dt, *wall_index_or_empty());
   }
 }
 
@@ -413,7 +411,7 @@ void Simulation<D, K>::transport_scalars(double dt) {
 template <int D, class K>
 void Simulation<D, K>::sample_scalars() {
   for (int which = 0; which < 2; ++which) {
-    ScalarDiffusion<D, K>* unit =
+    ScalarDiffusion<D>* unit =
         which == 0 ? (heat_ ? &*heat_ : nullptr) : (concentration_ ? &*concentration_ : nullptr);
     if (!unit) continue;
     std::vector<double> ext = {-std::numeric_limits<double>::infinity(),
@@ -562,13 +560,14 @@ void Simulation<D, K>::exchange_and_search() {
   } else {
     nl_.build(s_, grid_, halo_.ghost_box(), rc_, nullptr, rigid_all());
   }
+  pk_.prepare(s_, nl_, kernel_);
 }
 
 template <int D, class K>
 void Simulation<D, K>::compute_density_and_pressure(double dt) {
   if (summation_) {
     Timer tm(timer(DensitySummation<D, K>::kName));
-    summation_->run(nl_);
+    summation_->run(nl_, pk_);
   } else if (continuity_ && dt > 0) {
     Timer tm(timer(ContinuityDensity<D, K>::kName));
     continuity_->run(nl_, dt);
@@ -588,9 +587,9 @@ template <int D, class K>
 void Simulation<D, K>::apply_wall_condition() {
   if (!walls_) return;
   {
-    Timer tm(timer(WallBoundary<D, K>::kName));
+    Timer tm(timer(WallBoundary<D>::kName));
     walls_->run(
-        nl_, fluid_body_force(t_),
+        nl_, pk_, fluid_body_force(t_),
         s_.has("wall_acceleration") ? &s_.template get<Vec<D>>("wall_acceleration") : nullptr);
   }
   Timer tm(timer("halo_exchange"));
@@ -606,6 +605,7 @@ void Simulation<D, K>::compute_forces() {
   Timer tm(timer("fluid_forces"));
   FluidForceInputs<D> in;
   in.fluids = &fluids_;
+  in.pairs = &pk_;
   in.body = fluid_body_force(t_);
   in.wall_volume = wall_volume_;
   in.h = h_;
@@ -725,7 +725,7 @@ typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
       scan_particles<D>(s_, fluids_, mats_, guards_, vmin_dom, vmax_dom, grid_.periodic, step_, t_);
   // Temperature and concentration are state too: an explicit diffusion step past its bound
   // (Fuchs 2021 eq. 41) overflows them while the flow is still sound.
-  for (ScalarDiffusion<D, K>* unit :
+  for (ScalarDiffusion<D>* unit :
        {heat_ ? &*heat_ : nullptr, concentration_ ? &*concentration_ : nullptr}) {
     if (!unit || !scan.violation.empty()) continue;
     for (std::size_t i = 0; i < s_.owned(); ++i)
@@ -1068,11 +1068,11 @@ void Simulation<D, K>::maybe_rebalance() {
 template <int D, class K>
 std::map<std::string, std::size_t> Simulation<D, K>::memory_by_owner() const {
   auto m = s_.memory_by_owner();
-  m["neighbor_search"] += nl_.bytes();
+  m["neighbor_search"] += nl_.bytes() + pk_.bytes();
   // Units' scratch arrays (their columns are counted with the store).
   if (forces_) m[FluidForces<D, K>::kName] += forces_->bytes();
   if (continuity_) m[ContinuityDensity<D, K>::kName] += continuity_->bytes();
-  for (const ScalarDiffusion<D, K>* unit :
+  for (const ScalarDiffusion<D>* unit :
        {heat_ ? &*heat_ : nullptr, concentration_ ? &*concentration_ : nullptr})
     if (unit) m[unit->values().owner()] += unit->bytes();
   return m;
@@ -1151,9 +1151,8 @@ void Simulation<D, K>::start() {
 
 template <int D, class K>
 SolidFractionScan Simulation<D, K>::scan_solid_fraction() {
-  return solid_fraction<D, K>(s_, nl_, kernel_, wall_volume_,
-                              wall_index_ ? wall_index_->data() : nullptr,
-                              bodies_ ? bodies_->body_index().data() : nullptr);
+  return solid_fraction<D>(s_, nl_, pk_, wall_volume_, wall_index_ ? wall_index_->data() : nullptr,
+                           bodies_ ? bodies_->body_index().data() : nullptr);
 }
 
 template <int D, class K>

@@ -4,7 +4,7 @@
 // step by unit and the per-particle storage by unit. A unit a scene does not use must show
 // no time and no storage.
 //
-//   bench_effects [--steps S] [--dx DX]
+//   bench_effects [--steps S] [--dx DX] [--pair-kernel table|stream]
 #include <mpi.h>
 
 #include <cstdio>
@@ -108,18 +108,20 @@ int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
   int steps = 200;
   double dx = 2.5e-4;
+  std::string pair_kernel = "table";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--steps") steps = std::stoi(argv[i + 1]);
     if (a == "--dx") dx = std::stod(argv[i + 1]);
+    if (a == "--pair-kernel") pair_kernel = argv[i + 1];
   }
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   if (rank == 0)
     std::printf(
-        "bench_effects: disk in a box, dx = %g, %d steps; per unit: ms per step; storage: bytes "
-        "per particle\n",
-        dx, steps);
+        "bench_effects: disk in a box, dx = %g, %d steps, pair kernel %s; per unit: ms per step; "
+        "storage: bytes per particle\n",
+        dx, steps, pair_kernel.c_str());
   const struct {
     const char* label;
     Effects effects;
@@ -132,8 +134,11 @@ int main(int argc, char** argv) {
       {"+ heat + body + contact", {.heat = true, .body = true, .contact = true}},
       {"+ heat + phase change", {.heat = true, .body = true, .contact = true, .phase = true}},
   };
-  for (const auto& v : variants)
-    run(v.label, sph::parse_case_text(scene(dx, v.effects)), steps, MPI_COMM_WORLD);
+  for (const auto& v : variants) {
+    sph::v1::Case c = sph::parse_case_text(scene(dx, v.effects));
+    if (pair_kernel == "stream") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_STREAM);
+    run(v.label, c, steps, MPI_COMM_WORLD);
+  }
   MPI_Finalize();
   return 0;
 }

@@ -4,6 +4,7 @@
 // Run under mpirun for the parallel numbers (tests/bench/scaling.sh drives that).
 //
 //   bench_solver [--dim 2|3] [--particles N] [--steps S] [--kernel quintic|wendland]
+//                [--pair-kernel table|stream]   (Case.pair_kernel_storage; default: the case's)
 //   bench_solver --case FILE [--steps S] [--skip T]   (any case; --skip advances T steps first,
 //                                                     e.g. to time bodies in contact)
 #include <mpi.h>
@@ -107,10 +108,11 @@ void bench(const sph::v1::Case& c, int steps, int skip, MPI_Comm comm) {
   MPI_Allreduce(MPI_IN_PLACE, &nf, 1, MPI_DOUBLE, MPI_SUM, comm);
   if (rank == 0) {
     std::printf(
-        "bench_solver case=%s dim=%d kernel=%s ranks=%d particles=%.0f (dx=%.4g) steps=%d from "
-        "t=%.4g setup=%.2fs\n",
-        c.name().c_str(), D, K::kSupport == 3.0 ? "quintic" : "wendland", size, n, c.dx(), steps,
-        sim.time(), setup);
+        "bench_solver case=%s dim=%d kernel=%s pair_kernel=%s ranks=%d particles=%.0f (dx=%.4g) "
+        "steps=%d from t=%.4g setup=%.2fs\n",
+        c.name().c_str(), D, K::kSupport == 3.0 ? "quintic" : "wendland",
+        c.pair_kernel_storage() == sph::v1::PAIR_KERNEL_STREAM ? "stream" : "table", size, n,
+        c.dx(), steps, sim.time(), setup);
     std::printf("  time/step          %10.3f ms\n", 1e3 * wall / steps);
     std::printf("  particle-steps/s   %10.3e  (%.3e per rank; all particles, walls included)\n",
                 n * steps / wall, n * steps / wall / size);
@@ -141,6 +143,7 @@ int main(int argc, char** argv) {
   std::string case_file;
   double particles = 20000;
   bool wendland = false;
+  std::string pair_kernel;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
     if (a == "--dim")
@@ -155,6 +158,8 @@ int main(int argc, char** argv) {
       case_file = v;
     else if (a == "--skip")
       skip = std::stoi(v);
+    else if (a == "--pair-kernel")
+      pair_kernel = v;
   }
   sph::v1::Case c =
       case_file.empty() ? dam_break(dim, particles, wendland) : sph::load_case_file(case_file);
@@ -167,6 +172,8 @@ int main(int argc, char** argv) {
     c.mutable_output()->clear_times();
     c.mutable_output()->set_series_interval(1e29);
   }
+  if (pair_kernel == "stream") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_STREAM);
+  if (pair_kernel == "table") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_TABLE);
   if (dim == 2) {
     if (wendland)
       bench<2, sph::WendlandC2<2>>(c, steps, skip, MPI_COMM_WORLD);

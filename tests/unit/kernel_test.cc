@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <vector>
 
 #include "solver/core/kernel.h"
 #include "solver/core/types.h"
@@ -86,6 +88,32 @@ TEST(Kernel, CompactSupportAndDerivative) {
   EXPECT_LT(max_derivative_error(q, h), 1e-7);
   EXPECT_LT(max_derivative_error(w, h), 1e-7);
   EXPECT_LE(q.dW(0.5 * h), 0.0);
+}
+
+// The branch-free bulk evaluation (what the pair table uses) gives W and dW to the bit, on
+// every piece of the kernels, at the joints, at and beyond the support, and at r = 0.
+template <class K>
+int bulk_mismatches(const K& k) {
+  std::vector<double> r;
+  const double rc = k.support_radius(), h = rc / K::kSupport;
+  for (int e = 0; e <= 4000; ++e) r.push_back(1.1 * rc * e / 4000.0);
+  for (double joint : {h, 2 * h, rc})
+    for (double d : {-1e-15, -1e-16, 0.0, 1e-16, 1e-15}) r.push_back(joint * (1 + d));
+  std::vector<double> w(r.size()), dw(r.size());
+  k.evaluate(r.size(), r.data(), w.data(), dw.data());
+  int bad = 0;
+  for (std::size_t e = 0; e < r.size(); ++e) {
+    const double w1 = k.W(r[e]), d1 = k.dW(r[e]);
+    bad += std::memcmp(&w1, &w[e], sizeof w1) != 0 || std::memcmp(&d1, &dw[e], sizeof d1) != 0;
+  }
+  return bad;
+}
+
+TEST(Kernel, BulkEvaluationEqualsPointwiseToTheBit) {
+  EXPECT_EQ(bulk_mismatches(QuinticSpline<2>(0.37)), 0);
+  EXPECT_EQ(bulk_mismatches(QuinticSpline<3>(1.3e-6)), 0);
+  EXPECT_EQ(bulk_mismatches(WendlandC2<2>(0.37)), 0);
+  EXPECT_EQ(bulk_mismatches(WendlandC2<3>(2.1)), 0);
 }
 
 TEST(Kernel, GradientIsFirstOrderConsistentOnTheLattice) {
