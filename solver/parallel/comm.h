@@ -69,7 +69,8 @@ class Comm {
       total += sizes[static_cast<size_t>(r)];
     }
     std::string out(static_cast<size_t>(total), '\0');
-    MPI_Allgatherv(mine.data(), n, MPI_CHAR, out.data(), sizes.data(), displ.data(), MPI_CHAR, comm_);
+    MPI_Allgatherv(mine.data(), n, MPI_CHAR, out.data(), sizes.data(), displ.data(), MPI_CHAR,
+                   comm_);
     return out;
   }
   // The first non-empty string in rank order, on every rank.

@@ -43,7 +43,8 @@ class Halo {
   // units outside the particle columns, such as contact histories, follows them).
   const std::vector<std::vector<ParticleId>>& migrated_ids() const { return migrated_ids_; }
   // Exchanges per-rank byte buffers (send[r] to rank r); returns what arrived, by source.
-  std::vector<std::vector<std::byte>> exchange_bytes(const std::vector<std::vector<std::byte>>& send);
+  std::vector<std::vector<std::byte>> exchange_bytes(
+      const std::vector<std::vector<std::byte>>& send);
 
   // Seconds spent in MPI exchanges since the last call (for the communication share).
   double take_comm_seconds() {

@@ -72,8 +72,10 @@ RunOutcome run_case(const v1::Case& c, MPI_Comm comm_raw, const RunOptions& opti
     comm.barrier();
     const bool wendland = c.kernel() == v1::WENDLAND_C2;
     if (c.dimension() == 2)
-      return wendland ? run_with<2, WendlandC2<2>>(c, comm, o) : run_with<2, QuinticSpline<2>>(c, comm, o);
-    return wendland ? run_with<3, WendlandC2<3>>(c, comm, o) : run_with<3, QuinticSpline<3>>(c, comm, o);
+      return wendland ? run_with<2, WendlandC2<2>>(c, comm, o)
+                      : run_with<2, QuinticSpline<2>>(c, comm, o);
+    return wendland ? run_with<3, WendlandC2<3>>(c, comm, o)
+                    : run_with<3, QuinticSpline<3>>(c, comm, o);
   } catch (const std::exception& e) {
     out.status = RunStatus::kError;
     out.message = e.what();

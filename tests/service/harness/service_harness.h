@@ -19,8 +19,8 @@ using namespace std::chrono_literals;
 
 struct ServerSettings {
   double lease_seconds = 3;
-  std::string token;          // non-empty: written to a file and passed as --token-file
-  double max_particles = -1;  // < 0: the server's default
+  std::string token;           // non-empty: written to a file and passed as --token-file
+  double max_particles = -1;   // < 0: the server's default
   double shutdown_grace = -1;  // < 0: the server's default
 
   ServerSettings& lease(double seconds) {
