@@ -84,6 +84,17 @@ void AttemptReporter::stop() {
   if (thread_.joinable()) thread_.join();
 }
 
+void AttemptReporter::finish_acknowledged(const std::string& path) {
+  std::vector<v1::Checkpoint> pending;
+  {
+    std::lock_guard lock(mu_);
+    pending.swap(pending_checkpoints_);
+  }
+  for (const auto& cp : pending)
+    if (cp.path() != path) pruner_.acknowledged(cp.path());
+  pruner_.acknowledged(path);
+}
+
 void AttemptReporter::run() {
   std::unique_lock lock(mu_);
   while (!stop_) {

@@ -45,8 +45,12 @@ class AttemptReporter {
   // progress and checkpoint (last_progress, last_checkpoint).
   void stop();
 
-  // After stop(): the Finish carrying `path` was accepted.
-  void finish_acknowledged(const std::string& path) { pruner_.acknowledged(path); }
+  // After stop(): the Finish carrying `path`, the attempt's newest checkpoint, was accepted.
+  // The server now resumes the job (if ever) from it, so the checkpoints written before it
+  // that no report carried (written while the server was away, or just before the end) count
+  // as acknowledged too, in order: without that a pool that finished before its first report
+  // after an outage left every checkpoint of the outage on disk.
+  void finish_acknowledged(const std::string& path);
 
   bool lost() const { return lost_.load(); }
   bool cancel_requested() const { return cancel_requested_.load(); }
