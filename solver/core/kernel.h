@@ -94,7 +94,8 @@ class WendlandC2 {
       const double q = r[k] * inv_h;
       const double a = std::max(1.0 - 0.5 * q, 0.0);
       const double w = sw * a * a * a * a * (2.0 * q + 1.0), d = sd * (-5.0 * q) * a * a * a;
-      w_out[k] = q < 2.0 ? w : 0.0;  // selects, not branches: dW() is +0 beyond, this -0
+      // Selects, not branches; beyond the support d is -0 where dW() returns +0.
+      w_out[k] = q < 2.0 ? w : 0.0;
       dw_out[k] = q < 2.0 ? d : 0.0;
     }
   }

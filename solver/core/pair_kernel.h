@@ -1,6 +1,8 @@
 #pragma once
-// The kernel of the pairs of a neighbour list: the distance r, W(r) and dW/dr, given to the
-// passes over pairs (density, wall condition, conduction, forces, solid fraction) instead of
+// The kernel of the pairs of a neighbour list: the distance r, W(r) and dW/dr at the positions
+// of the search, given to the passes over pairs that run at those positions (density, wall
+// condition, conduction, forces, solid fraction; not the continuity equation, which uses
+// mid-step positions, nor probes and open-boundary samples, which are not pairs) instead of
 // each of them taking the square root and the kernel polynomial, with its data-dependent
 // branches, again for the same pair. The values are evaluated in loops without branches that
 // vectorise (K::evaluate), and equal those the passes computed before to the bit
@@ -10,9 +12,10 @@
 //    scene at the paper's dx on one core: 41 ms a step before, 27 ms with the table.
 //  - kStream: a particle's pairs evaluated into a scratch buffer each time a pass asks for
 //    them; no storage, each pass gathers and evaluates again (38 ms in that scene).
-#include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "solver/core/neighbor_list.h"
@@ -60,7 +63,10 @@ class PairKernel {
   // The values of particle i's pairs. With kStream they live in a scratch buffer until the
   // next call.
   PairValues of(const NeighborList<D>& nl, std::size_t i) const {
-    assert(generation_ == nl.generation() && "pair kernel is stale: prepare() after build()");
+    // Always checked (one compare per particle and pass): values of another list's pairs
+    // would be silently wrong.
+    if (generation_ != nl.generation())
+      throw std::logic_error("pair kernel values are stale: prepare() after every build()");
     if (storage_ == Storage::kTable) {
       const std::size_t e = nl.first(i);
       return {r_.data() + e, w_.data() + e, dw_.data() + e};
@@ -97,7 +103,7 @@ class PairKernel {
   const ParticleStore<D>* s_ = nullptr;
   const void* kernel_ = nullptr;
   void (*evaluate_)(const void*, std::size_t, const double*, double*, double*) = nullptr;
-  std::uint64_t generation_ = 0;
+  std::uint64_t generation_ = std::numeric_limits<std::uint64_t>::max();  // matches no list
   mutable std::vector<double> r_, w_, dw_;  // the table, or (kStream) the scratch
 };
 

@@ -8,7 +8,10 @@
 // about to resume from. So the pool's solver keeps every checkpoint and this class deletes a
 // file only after the server has acknowledged two newer ones in the same folder (the newest
 // acknowledged one may be truncated if the disk failed while it was written; the one before
-// it is the fallback). Files the server has not acknowledged are never deleted.
+// it is the fallback). A file the server has not acknowledged is deleted only once a newer one
+// is: when the attempt's Finish naming its newest checkpoint is accepted, the files written
+// before it that no Report carried count as acknowledged (AttemptReporter::finish_acknowledged),
+// since the server then resumes the job, if ever, from that newest one.
 #include <map>
 #include <string>
 #include <vector>
