@@ -34,7 +34,6 @@ class PairKernel {
  public:
   enum class Storage { kTable, kStream };
   explicit PairKernel(Storage storage = Storage::kTable) : storage_(storage) {}
-  Storage storage() const { return storage_; }
 
   // Binds the table to nl as just built from the positions of s (which the passes then use
   // unchanged) and, with kTable, evaluates every pair of the owned particles' lists.

@@ -69,8 +69,8 @@ class WallBoundary {
       int mat = -1;
       bool mixed = false;
       const Vec<D> xw = s_.x[w];
-      const PairValues g = pk.of(nl, w);
-      const double* g_w = g.w;
+      const double* const pair_w = pk.of(nl, w).w;
+      const double* g_w = pair_w;
       for (const std::uint32_t* fp = nl.begin(w); fp != nl.fluid_end(w); ++fp, ++g_w) {
         const std::uint32_t f = *fp;
         const Vec<D> rwf = xw - s_.x[f];
@@ -104,9 +104,9 @@ class WallBoundary {
         if (p2_) (*fluid2_)[w] = static_cast<std::uint16_t>(mat);
         continue;
       }
-      // Per fluid: eq. 27 over that fluid's particles only.
-      const PairValues g2 = pk.of(nl, w);
-      const double* g2_w = g2.w;
+      // Per fluid: eq. 27 over that fluid's particles only (the same pairs: pair_w still
+      // holds them, no of() call came between).
+      const double* g2_w = pair_w;
       for (const std::uint32_t* fp = nl.begin(w); fp != nl.fluid_end(w); ++fp, ++g2_w) {
         const std::uint32_t f = *fp;
         const std::size_t mf = s_.material[f];
