@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "solver/bodies/rigid_bodies.h"
+#include "solver/io/checkpoint_state.h"
 
 namespace sph {
 
@@ -79,16 +80,16 @@ class PhaseTransitions {
   std::int64_t solidified_total() const { return solidified_total_; }
   std::size_t max_bodies() const { return max_bodies_; }
   // The running totals are cumulative series: a resumed run continues them.
-  void save(std::map<std::string, double>& state) const {
+  void save(CheckpointState& state) const {
     state["phase_melted_total"] = static_cast<double>(melted_total_);
     state["phase_solidified_total"] = static_cast<double>(solidified_total_);
   }
   // Checkpoints written before the totals were saved restart them at zero.
-  void load(const std::map<std::string, double>& state) {
+  void load(const CheckpointState& state) {
     if (state.count("phase_melted_total"))
-      melted_total_ = static_cast<std::int64_t>(state.at("phase_melted_total"));
+      melted_total_ = static_cast<std::int64_t>(state_value(state, "phase_melted_total"));
     if (state.count("phase_solidified_total"))
-      solidified_total_ = static_cast<std::int64_t>(state.at("phase_solidified_total"));
+      solidified_total_ = static_cast<std::int64_t>(state_value(state, "phase_solidified_total"));
   }
 
  private:

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include "solver/physics/body_force.h"
 
@@ -256,18 +258,19 @@ double RigidBodies<D>::total_mass() const {
 
 namespace {
 template <class V>
-void put(std::map<std::string, double>& st, const std::string& key, const V& v) {
+void put(CheckpointState& st, const std::string& key, const V& v) {
   for (int a = 0; a < v.size(); ++a) st[key + "." + std::to_string(a)] = v[a];
 }
 template <class V>
-void get(const std::map<std::string, double>& st, const std::string& key, V& v) {
-  for (int a = 0; a < v.size(); ++a) v[a] = st.at(key + "." + std::to_string(a));
+void get(const CheckpointState& st, const std::string& key, V& v) {
+  for (int a = 0; a < v.size(); ++a) v[a] = state_value(st, key + "." + std::to_string(a));
 }
 }  // namespace
 
 template <int D>
-void RigidBodies<D>::save(std::map<std::string, double>& st) const {
+void RigidBodies<D>::save(CheckpointState& st) const {
   // Phase transitions add bodies during a run: the count and what a new body was born as.
+  st["bodies.case"] = static_cast<double>(case_bodies_);
   st["bodies.count"] = static_cast<double>(bodies_.size());
   st["bodies.made"] = static_cast<double>(bodies_made_);
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
@@ -304,16 +307,24 @@ void RigidBodies<D>::save(std::map<std::string, double>& st) const {
 }
 
 template <int D>
-void RigidBodies<D>::load(const std::map<std::string, double>& st) {
+void RigidBodies<D>::load(const CheckpointState& st) {
+  // Body k of the checkpoint is body k of the case: another list of bodies would hand one
+  // body's particles and momentum to another (checkpoints before "bodies.case" unchecked).
+  if (const auto it = st.find("bodies.case");
+      it != st.end() && static_cast<std::size_t>(it->second) != case_bodies_)
+    throw std::runtime_error("the checkpoint was written for a case with " +
+                             std::to_string(static_cast<long long>(it->second)) +
+                             " rigid bodies in its list; this case has " +
+                             std::to_string(case_bodies_));
   const auto count = st.find("bodies.count");
   if (count != st.end()) {
     const auto n = static_cast<std::size_t>(count->second);
     for (std::size_t k = bodies_.size(); k < n; ++k) {
       const std::string p = "body." + std::to_string(k) + ".";
       RigidBody<D> b;
-      b.source = static_cast<int>(st.at(p + "source"));
-      b.motion = static_cast<BodyMotion>(static_cast<int>(st.at(p + "motion")));
-      b.body_force_factor = st.at(p + "force_factor");
+      b.source = static_cast<int>(state_value(st, p + "source"));
+      b.motion = static_cast<BodyMotion>(static_cast<int>(state_value(st, p + "motion")));
+      b.body_force_factor = state_value(st, p + "force_factor");
       // A piece split off a body with prescribed motion follows that body's path.
       if (b.source >= 0) b.path = bodies_[static_cast<std::size_t>(b.source)].path;
       bodies_.push_back(b);
@@ -332,11 +343,11 @@ void RigidBodies<D>::load(const std::map<std::string, double>& st) {
     else
       b.serial = static_cast<std::int64_t>(k);
     if (k >= case_bodies_) b.name = "body_" + std::to_string(b.serial);
-    b.mass = st.at(p + "mass");
-    b.particles = static_cast<std::int64_t>(st.at(p + "particles"));
+    b.mass = state_value(st, p + "mass");
+    b.particles = static_cast<std::int64_t>(state_value(st, p + "particles"));
     get(st, p + "com0", b.com0);
     for (int a = 0; a < A * A; ++a)
-      b.inertia_body(a / A, a % A) = st.at(p + "inertia." + std::to_string(a));
+      b.inertia_body(a / A, a % A) = state_value(st, p + "inertia." + std::to_string(a));
     get(st, p + "com", b.com);
     get(st, p + "velocity", b.velocity);
     get(st, p + "omega", b.omega);
@@ -350,7 +361,7 @@ void RigidBodies<D>::load(const std::map<std::string, double>& st) {
     if (const auto it = st.find(p + "contacts"); it != st.end())  // not in older checkpoints
       b.contacts = static_cast<std::int64_t>(it->second);
     if constexpr (D == 2)
-      b.orientation.angle = st.at(p + "angle");
+      b.orientation.angle = state_value(st, p + "angle");
     else {
       auto c = b.orientation.q.coeffs();
       get(st, p + "quaternion", c);

@@ -18,6 +18,7 @@
 #include "solver/bodies/rigid_body.h"
 #include "solver/core/neighbor_list.h"
 #include "solver/core/particle_store.h"
+#include "solver/io/checkpoint_state.h"
 #include "solver/parallel/exact_sum.h"
 #include "sph/v1/case.pb.h"
 
@@ -76,8 +77,8 @@ class RigidBodies {
   static double self_inertia_per_mass(double dx);
 
   // Checkpoint state (everything the integrator needs besides the particle columns).
-  void save(std::map<std::string, double>& state) const;
-  void load(const std::map<std::string, double>& state);
+  void save(CheckpointState& state) const;
+  void load(const CheckpointState& state);
 
  private:
   friend class RigidBodiesTest;

@@ -175,7 +175,7 @@ void SpringDashpotContact<D>::prune_history() {
 }
 
 template <int D>
-void SpringDashpotContact<D>::save(std::map<std::string, double>& state, const Comm& comm) const {
+void SpringDashpotContact<D>::save(CheckpointState& state, const Comm& comm) const {
   if (!friction()) return;
   const std::size_t rec = 2 * sizeof(ParticleId) + sizeof(Vec<D>);
   std::string mine(history_.size() * rec, '\0');
@@ -200,7 +200,7 @@ void SpringDashpotContact<D>::save(std::map<std::string, double>& state, const C
 }
 
 template <int D>
-void SpringDashpotContact<D>::load(const std::map<std::string, double>& state) {
+void SpringDashpotContact<D>::load(const CheckpointState& state) {
   history_.clear();
   for (auto it = state.lower_bound("friction.");
        it != state.end() && it->first.rfind("friction.", 0) == 0; ++it) {

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "solver/bodies/rigid_bodies.h"
+#include "solver/io/checkpoint_state.h"
 #include "solver/parallel/halo.h"
 
 namespace sph {
@@ -89,8 +90,8 @@ class SpringDashpotContact {
   void prune_history();
   // Collective: every rank adds every rank's entries (the checkpoint attributes are written
   // collectively, so all ranks must pass the same state).
-  void save(std::map<std::string, double>& state, const Comm& comm) const;
-  void load(const std::map<std::string, double>& state);
+  void save(CheckpointState& state, const Comm& comm) const;
+  void load(const CheckpointState& state);
 
  private:
   void snapshot_step_start();

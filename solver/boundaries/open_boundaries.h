@@ -42,12 +42,14 @@
 // fluid), directions that are not along a coordinate axis.
 #include <cstdint>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "solver/boundaries/open_boundary_zone.h"
 #include "solver/boundaries/particle_ledger.h"
 #include "solver/core/neighbor_list.h"
+#include "solver/io/checkpoint_state.h"
 #include "solver/parallel/cell_grid.h"
 #include "solver/parallel/comm.h"
 #include "solver/physics/fluid_table.h"
@@ -200,15 +202,23 @@ class OpenBoundaries {
     }
   }
 
-  void save(std::map<std::string, double>& state) const {
+  void save(CheckpointState& state) const {
     ledger_.save(state, "open_next_id");
+    state["open_zones"] = static_cast<double>(zones_.size());
     for (std::size_t b = 0; b < zones_.size(); ++b)
       state["open_through_" + std::to_string(b)] = static_cast<double>(through_[b]);
   }
-  void load(const std::map<std::string, double>& state) {
+  void load(const CheckpointState& state) {
+    if (const auto it = state.find("open_zones");
+        it != state.end() && static_cast<std::size_t>(it->second) != zones_.size())
+      throw std::runtime_error("the checkpoint was written for a case with " +
+                               std::to_string(static_cast<long long>(it->second)) +
+                               " open boundary zones; this case has " +
+                               std::to_string(zones_.size()));
     ledger_.load(state, "open_next_id");
     for (std::size_t b = 0; b < zones_.size(); ++b)
-      through_[b] = static_cast<std::int64_t>(state.at("open_through_" + std::to_string(b)));
+      through_[b] =
+          static_cast<std::int64_t>(state_value(state, "open_through_" + std::to_string(b)));
   }
 
  private:

@@ -72,13 +72,13 @@ typename ParticleLedger<D>::Totals ParticleLedger<D>::apply(
 }
 
 template <int D>
-void ParticleLedger<D>::save(std::map<std::string, double>& state, const std::string& key) const {
+void ParticleLedger<D>::save(CheckpointState& state, const std::string& key) const {
   state[key] = static_cast<double>(next_id_);  // exact below 2^53
 }
 
 template <int D>
-void ParticleLedger<D>::load(const std::map<std::string, double>& state, const std::string& key) {
-  next_id_ = static_cast<ParticleId>(state.at(key));
+void ParticleLedger<D>::load(const CheckpointState& state, const std::string& key) {
+  next_id_ = static_cast<ParticleId>(state_value(state, key));
 }
 
 template class ParticleLedger<2>;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "solver/core/particle_store.h"
+#include "solver/io/checkpoint_state.h"
 #include "solver/parallel/comm.h"
 
 namespace sph {
@@ -38,8 +39,8 @@ class ParticleLedger {
                const std::vector<std::uint32_t>& doomed, std::vector<std::int64_t>& tallies,
                const Comm& comm);
 
-  void save(std::map<std::string, double>& state, const std::string& key) const;
-  void load(const std::map<std::string, double>& state, const std::string& key);
+  void save(CheckpointState& state, const std::string& key) const;
+  void load(const CheckpointState& state, const std::string& key);
 
  private:
   ParticleId next_id_ = 0;

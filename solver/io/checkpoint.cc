@@ -9,7 +9,7 @@ namespace sph {
 
 template <int D>
 void write_checkpoint(const Comm& comm, const std::string& path, const ParticleStore<D>& s,
-                      const std::map<std::string, double>& state) {
+                      const CheckpointState& state) {
   const std::string tmp = path + ".tmp";
   if (comm.root()) std::filesystem::create_directories(std::filesystem::path(path).parent_path());
   comm.barrier();
@@ -36,19 +36,18 @@ void write_checkpoint(const Comm& comm, const std::string& path, const ParticleS
 }
 
 template <int D>
-std::map<std::string, double> read_checkpoint(const Comm& comm, const std::string& path,
-                                              ParticleStore<D>& s) {
+CheckpointState read_checkpoint(const Comm& comm, const std::string& path, ParticleStore<D>& s) {
   h5::Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "fapl");
   h5::check(H5Pset_fapl_mpio(fapl, comm.raw(), MPI_INFO_NULL), "H5Pset_fapl_mpio");
   h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl), H5Fclose, "opening checkpoint " + path);
   h5::Handle st(H5Gopen2(f, "/state", H5P_DEFAULT), H5Gclose, "checkpoint /state");
   if (h5::read_int_attribute(st, "dimension") != D)
     throw std::runtime_error("checkpoint " + path + " is for a different dimension");
-  std::map<std::string, double> state;
+  CheckpointState state;
   H5Aiterate2(
       st, H5_INDEX_NAME, H5_ITER_INC, nullptr,
       [](hid_t loc, const char* name, const H5A_info_t*, void* data) -> herr_t {
-        auto* out = static_cast<std::map<std::string, double>*>(data);
+        auto* out = static_cast<CheckpointState*>(data);
         if (std::string(name) != "dimension") (*out)[name] = h5::read_double_attribute(loc, name);
         return 0;
       },
@@ -75,12 +74,10 @@ std::map<std::string, double> read_checkpoint(const Comm& comm, const std::strin
 }
 
 template void write_checkpoint<2>(const Comm&, const std::string&, const ParticleStore<2>&,
-                                  const std::map<std::string, double>&);
+                                  const CheckpointState&);
 template void write_checkpoint<3>(const Comm&, const std::string&, const ParticleStore<3>&,
-                                  const std::map<std::string, double>&);
-template std::map<std::string, double> read_checkpoint<2>(const Comm&, const std::string&,
-                                                          ParticleStore<2>&);
-template std::map<std::string, double> read_checkpoint<3>(const Comm&, const std::string&,
-                                                          ParticleStore<3>&);
+                                  const CheckpointState&);
+template CheckpointState read_checkpoint<2>(const Comm&, const std::string&, ParticleStore<2>&);
+template CheckpointState read_checkpoint<3>(const Comm&, const std::string&, ParticleStore<3>&);
 
 }  // namespace sph

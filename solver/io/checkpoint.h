@@ -9,17 +9,17 @@
 #include <string>
 
 #include "solver/core/particle_store.h"
+#include "solver/io/checkpoint_state.h"
 #include "solver/parallel/comm.h"
 
 namespace sph {
 
 template <int D>
 void write_checkpoint(const Comm& comm, const std::string& path, const ParticleStore<D>& s,
-                      const std::map<std::string, double>& state);
+                      const CheckpointState& state);
 
 // Throws std::runtime_error naming what does not match (dimension, a missing column).
 template <int D>
-std::map<std::string, double> read_checkpoint(const Comm& comm, const std::string& path,
-                                              ParticleStore<D>& s);
+CheckpointState read_checkpoint(const Comm& comm, const std::string& path, ParticleStore<D>& s);
 
 }  // namespace sph

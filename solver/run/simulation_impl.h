@@ -952,12 +952,12 @@ std::string Simulation<D, K>::write_checkpoint_now() {
   char name[64];
   std::snprintf(name, sizeof name, "ckpt_%012lld.h5", static_cast<long long>(step_));
   const std::string path = opt_.output_dir + "/checkpoints/" + name;
-  std::map<std::string, double> state = {{"time", t_},
-                                         {"step", static_cast<double>(step_)},
-                                         {"dt", dt_},
-                                         {"dt0", dt0_},
-                                         {"next_series", next_series_},
-                                         {"contact_possible", contact_possible_ ? 1.0 : 0.0}};
+  CheckpointState state = {{"time", t_},
+                           {"step", static_cast<double>(step_)},
+                           {"dt", dt_},
+                           {"dt0", dt0_},
+                           {"next_series", next_series_},
+                           {"contact_possible", contact_possible_ ? 1.0 : 0.0}};
   if (bodies_) bodies_->save(state);
   if (contact_) contact_->save(state, comm_);
   if (open_) open_->save(state);
@@ -1120,17 +1120,32 @@ void Simulation<D, K>::start() {
     write_snapshot();
     next_output_ = schedule_.first_after(0.0);
   } else {
-    const auto state = read_checkpoint(comm_, opt_.resume_from, s_);
-    t_ = state.at("time");
-    step_ = static_cast<std::int64_t>(state.at("step"));
-    dt_ = state.at("dt");
-    dt0_ = state.at("dt0");
-    next_series_ = state.at("next_series");
-    contact_possible_ = state.count("contact_possible") && state.at("contact_possible") > 0;
-    if (bodies_) bodies_->load(state);
-    if (open_) open_->load(state);
-    if (phase_) phase_->load(state);
-    if (contact_) contact_->load(state);  // every rank reads all pairs ...
+    const CheckpointState state = read_checkpoint(comm_, opt_.resume_from, s_);
+    try {
+      t_ = state_value(state, "time");
+      step_ = static_cast<std::int64_t>(state_value(state, "step"));
+      dt_ = state_value(state, "dt");
+      dt0_ = state_value(state, "dt0");
+      next_series_ = state_value(state, "next_series");
+      contact_possible_ =
+          state.count("contact_possible") && state_value(state, "contact_possible") > 0;
+      // A unit the checkpoint ran with but the case lacks (or the reverse) would leave its
+      // particles to units that do not know them, e.g. rigid particles with no body.
+      const auto expect = [&state](bool in_case, const char* key, const char* what) {
+        if (in_case != (state.count(key) > 0))
+          throw std::runtime_error(std::string("the checkpoint was written for a case ") +
+                                   (in_case ? "without " : "with ") + what + "; this case " +
+                                   (in_case ? "has them" : "has none"));
+      };
+      expect(bodies_.has_value(), "bodies.count", "rigid bodies");
+      expect(open_.has_value(), "open_next_id", "open boundaries");
+      if (bodies_) bodies_->load(state);
+      if (open_) open_->load(state);
+      if (phase_) phase_->load(state);
+      if (contact_) contact_->load(state);  // every rank reads all pairs ...
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error("resuming from " + opt_.resume_from + ": " + e.what());
+    }
     decompose_by_histogram();
     migrate();
     if (contact_) {
