@@ -13,36 +13,16 @@
 //    condition gave it, so the forces on its neighbours do not jump;
 //  - a fluid particle of the fluid material below T_t - hysteresis/2 (reversible rules only)
 //    becomes a rigid particle of the solid material.
-// Bodies are then regrouped: the rigid particles of every body that lost or may gain
-// particles, and the new rigid particles, are linked when closer than the join radius and
-// either in the same body or one of them new. Each connected piece becomes a body: a piece of
-// an old body keeps it (a body broken in two becomes two), a piece joining several bodies
-// merges them, a piece of only new particles starts a new body. Mass, centre of mass and
-// inertia are recomputed from the particles (eqs. 20-23, Remark 13). A piece of one old body
-// keeps its angular velocity and gets u_k = u'_k + omega_k x (r_k - r'_k) (eq. 29); a merged
-// or new body gets the total linear and angular momentum of what it is made of. Melted
-// particles carry their momentum into the fluid, so momentum is conserved throughout.
-//
-// Forces: the next step's first half kick (eq. 31) uses the fluid force and torque of the
-// step that just ended. A rebuilt body gets the sum of its own particles' fluid forces
-// (eq. 19) and their moments about its new centre (eqs. 24-26), not its parent's: a piece
-// broken off a body would otherwise be kicked with the whole body's force over its own small
-// mass. A particle frozen this step brings no fluid force (its force as a fluid particle
-// mixes in rigid and wall neighbours), one step's half kick of one particle's force. The
-// contact force of a rebuilt body is zero here: the simulation evaluates contact again with
-// the new bodies (SpringDashpotContact::refresh) after searching neighbours again. Its mean
-// contact force over the last step (what the fluid's wall condition sees, RigidBody) is
-// each parent's in proportion to the mass the piece took from it.
-//
-// Parallel: the particles taking part in a regrouping are gathered on every rank (ordered by
-// id) and every rank runs the same union-find, so the body table stays replicated and results
-// do not depend on the rank count. Only steps with a transition pay for the gather, and only
-// for the bodies involved.
+// Bodies are then regrouped (BodyRegrouping: pieces, merges and new bodies with eq. 29's
+// velocities); melted particles carry their momentum into the fluid, so momentum is conserved
+// throughout.
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "solver/bodies/body_regrouping.h"
 #include "solver/bodies/rigid_bodies.h"
 #include "solver/io/checkpoint_state.h"
 
@@ -63,7 +43,9 @@ class PhaseTransitions {
   static constexpr const char* kName = "phase_transition";
 
   PhaseTransitions(std::vector<PhaseRule> rules, std::size_t max_bodies, double dx)
-      : rules_(std::move(rules)), max_bodies_(max_bodies), dx_(dx) {}
+      : rules_(std::move(rules)),
+        regrouping_(largest_join_radius(rules_), max_bodies, dx, "phase_transitions[].max_bodies") {
+  }
 
   struct Outcome {
     std::int64_t melted = 0, solidified = 0;  // this step, all ranks
@@ -78,7 +60,8 @@ class PhaseTransitions {
 
   std::int64_t melted_total() const { return melted_total_; }
   std::int64_t solidified_total() const { return solidified_total_; }
-  std::size_t max_bodies() const { return max_bodies_; }
+  std::size_t max_bodies() const { return regrouping_.max_bodies(); }
+  const BodyRegrouping<D>& regrouping() const { return regrouping_; }
   // The running totals are cumulative series: a resumed run continues them.
   void save(CheckpointState& state) const {
     state["phase_melted_total"] = static_cast<double>(melted_total_);
@@ -93,20 +76,14 @@ class PhaseTransitions {
   }
 
  private:
-  struct Record {  // a particle taking part in a regrouping
-    ParticleId id;
-    std::int32_t old_body;  // -1: solidified this step
-    double m;
-    Vec<D> x, v;
-    Vec<D> f;  // fluid force on the particle (eq. 19) of this step; zero for a new one
-  };
-  // involved[k] != 0 for the bodies taking part (the first bodies().size() entries).
-  void regroup(std::vector<Record>& recs, const std::vector<std::int64_t>& involved,
-               RigidBodies<D>& bodies, Outcome& out) const;
+  static double largest_join_radius(const std::vector<PhaseRule>& rules) {
+    double r = 0;
+    for (const PhaseRule& rule : rules) r = std::max(r, rule.join_radius);
+    return r;
+  }
 
   std::vector<PhaseRule> rules_;
-  std::size_t max_bodies_;
-  double dx_;
+  BodyRegrouping<D> regrouping_;
   std::int64_t melted_total_ = 0, solidified_total_ = 0;
 };
 

@@ -40,6 +40,7 @@ class RigidBodies {
   // The serial number for the next body a phase transition makes (RigidBody::serial).
   std::int64_t next_serial() { return bodies_made_++; }
   Column<std::int32_t>& body_index() { return body_; }
+  const Column<std::int32_t>& body_index() const { return body_; }
   Column<Vec<D>>& offset() { return offset_; }
   Column<Vec<D>>& particle_acceleration() { return accel_; }
   Column<Vec<D>>& fluid_force() { return fluid_force_; }

@@ -31,6 +31,11 @@
 // are rows spaced dx and the buffer is a whole number of dx long, so the lane stays a
 // lattice row: SPHinXsys' emitter recycles particles the same way); a fluid particle that
 // crosses an outflow's inner face joins its buffer, and leaves the run at the outer face.
+// So does a rigid particle of a freely moving body (a grain carried out by the gas): the
+// caller rebuilds the bodies that lost particles (BodyRegrouping, Fuchs 2021 eq. 29), so a
+// body leaves through an outlet piece by piece, its remaining part keeping the velocity the
+// rigid motion gives it there, and the particles counted through the outlet include its
+// particles. Prescribed and fixed bodies are the scene's geometry and never leave.
 // New particles get ids from ParticleLedger (deterministic on any rank count).
 //
 // The fluid's state next to a face is read at one sample point per lane, r_c inside the
@@ -46,6 +51,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/bodies/rigid_bodies.h"
 #include "solver/boundaries/open_boundary_zone.h"
 #include "solver/boundaries/particle_ledger.h"
 #include "solver/core/neighbor_list.h"
@@ -104,8 +110,12 @@ class OpenBoundaries {
 
   // After the drift, at the new time t: particles cross faces, inflow buffers refill,
   // outflows delete, prescribed velocities (and transport velocities, when given) are
-  // updated. Collective. Returns the change of the global particle count.
-  std::int64_t exchange_particles(double t, Column<Vec<D>>* transport, const Comm& comm) {
+  // updated. With `bodies`, rigid particles of free bodies past an outflow's outer face are
+  // deleted too and `lost[k]` (sized to the bodies) counts those of body k on this rank.
+  // Collective. Returns the change of the global particle count.
+  std::int64_t exchange_particles(double t, Column<Vec<D>>* transport, const Comm& comm,
+                                  const RigidBodies<D>* bodies = nullptr,
+                                  std::vector<std::int64_t>* lost = nullptr) {
     parents_.clear();
     parent_zone_.clear();
     doomed_.clear();
@@ -113,6 +123,7 @@ class OpenBoundaries {
     for (std::size_t i = 0; i < s_.owned(); ++i) {
       if (s_.kind[i] != Kind::kFluid) {  // e.g. solidified in a buffer
         zone_[i] = 0;
+        if (bodies && s_.kind[i] == Kind::kRigid) leave_if_out(i, *bodies, *lost);
         continue;
       }
       std::uint8_t z = zone_[i];
@@ -222,6 +233,20 @@ class OpenBoundaries {
   }
 
  private:
+  void leave_if_out(std::size_t i, const RigidBodies<D>& bodies, std::vector<std::int64_t>& lost) {
+    const std::int32_t k = bodies.body_index()[i];
+    if (k < 0 || bodies.bodies()[static_cast<std::size_t>(k)].motion != BodyMotion::kFree) return;
+    for (std::size_t b = 0; b < zones_.size(); ++b) {
+      const OpenBoundaryZone<D>& o = zones_[b];
+      if (!o.inflow() && o.xi(s_.x[i]) >= o.outer_xi() && o.across(s_.x[i])) {
+        doomed_.push_back(static_cast<std::uint32_t>(i));
+        ++tally_[b];
+        ++lost[static_cast<std::size_t>(k)];
+        return;
+      }
+    }
+  }
+
   // Shepard means at the lanes' sample points over the fluid (not buffer) particles: the
   // pressure for zones with a prescribed velocity (`pressure`), else the normal mass flux.
   void sample(const NeighborList<D>& nl, const CellGrid<D>& grid, const CellBox<D>& mine,

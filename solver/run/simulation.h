@@ -20,6 +20,7 @@
 #include "case/estimate.h"
 #include "case/materials.h"
 #include "case/motion.h"
+#include "solver/bodies/body_regrouping.h"
 #include "solver/bodies/phase_transitions.h"
 #include "solver/bodies/rigid_bodies.h"
 #include "solver/bodies/spring_dashpot_contact.h"
@@ -118,7 +119,7 @@ class Simulation {
   }
   Column<std::uint16_t> no_walls_{"wall_index", "walls", false};
   void sample_bodies();
-  void integrate_step(double dt);
+  std::string integrate_step(double dt);  // non-empty: why the run cannot go on
   // Contact sub-steps the coming step of length dt needs (1 when bodies cannot touch); step()
   // keeps it in substeps_ for move_bodies.
   int contact_substeps(double dt) const;
@@ -188,6 +189,10 @@ class Simulation {
 
   // Inflow/outflow buffers (solver/boundaries/open_boundaries.h).
   std::optional<OpenBoundaries<D, K>> open_;
+  // Free bodies leaving through an outflow: what remains of them is rebuilt (eq. 29).
+  std::optional<BodyRegrouping<D>> leaving_;
+  std::vector<std::int64_t> lost_;  // per body: particles that left this step
+  std::string regroup_bodies_that_left();
   void build_open_boundaries();
   void set_open_boundary_pressure();
   void apply_open_boundaries_after_forces();

@@ -196,7 +196,9 @@ void Simulation<D, K>::build_units() {
   if (walls_) result_.add_series("diagnostics/max_solid_fraction");
   if (contact_) result_.add_series("diagnostics/min_contact_distance");
   if (bodies_) {
-    body_slots_ = phase_ ? phase_->max_bodies() : static_cast<std::size_t>(c_.bodies_size());
+    body_slots_ = leaving_ ? leaving_->max_bodies()
+                  : phase_ ? phase_->max_bodies()
+                           : static_cast<std::size_t>(c_.bodies_size());
     const auto nb = static_cast<std::uint64_t>(body_slots_);
     const std::uint64_t dd = D, aa = RigidBodies<D>::A;
     result_.add_series("bodies/time");
@@ -360,6 +362,29 @@ void Simulation<D, K>::build_open_boundaries() {
   result_.add_field(open_->zone());
   result_.add_series("open_boundaries/time");
   for (const auto& z : open_->zones()) result_.add_series("open_boundaries/" + z.name());
+  const bool outflow = std::any_of(open_->zones().begin(), open_->zones().end(),
+                                   [](const OpenBoundaryZone<D>& z) { return !z.inflow(); });
+  if (bodies_ && outflow) {
+    // A body broken apart at an outlet needs slots like one broken by melting.
+    if (phase_)
+      leaving_.emplace(phase_->regrouping());
+    else
+      leaving_.emplace(1.5 * dx_, 2 * static_cast<std::size_t>(c_.bodies_size()) + 64, dx_,
+                       "2 x the case's bodies + 64: pieces of bodies cut at an outlet");
+  }
+}
+
+// `lost_` (summed over the ranks) names the bodies that lost particles at an outlet.
+template <int D, class K>
+std::string Simulation<D, K>::regroup_bodies_that_left() {
+  Timer tm(timer(RigidBodies<D>::kName));
+  std::string error = leaving_->run(s_, *bodies_, lost_, comm_);
+  if (!error.empty()) {
+    char buf[120];
+    std::snprintf(buf, sizeof buf, " at step %lld, t = %.9g", static_cast<long long>(step_), t_);
+    return error + buf;
+  }
+  return {};
 }
 
 // Buffer pressures from the fluid's, then the ghosts' copies.
@@ -671,7 +696,7 @@ void Simulation<D, K>::prime() {
 }
 
 template <int D, class K>
-void Simulation<D, K>::integrate_step(double dt) {
+std::string Simulation<D, K>::integrate_step(double dt) {
   {
     Timer tm(timer("integrate"));
     kick(s_, 0.5 * dt);
@@ -689,12 +714,28 @@ void Simulation<D, K>::integrate_step(double dt) {
     wall_motion_->run(t_, transport_);
   }
   set_wall_scalars(t_);
+  bool bodies_left = false;
   if (open_) {
-    Timer tm(timer(OpenBoundaries<D, K>::kName));
-    // Inflows refill, outflows delete.
-    global_particles_ += open_->exchange_particles(t_, transport_, comm_);
+    {
+      Timer tm(timer(OpenBoundaries<D, K>::kName));
+      // Inflows refill, outflows delete (fluid, and the parts of bodies carried out).
+      if (leaving_) lost_.assign(bodies_->bodies().size(), 0);
+      global_particles_ +=
+          open_->exchange_particles(t_, transport_, comm_, leaving_ ? &*bodies_ : nullptr, &lost_);
+    }
+    if (leaving_) {
+      comm_.sum_inplace(lost_);
+      bodies_left = std::any_of(lost_.begin(), lost_.end(), [](std::int64_t n) { return n > 0; });
+      if (bodies_left)
+        if (std::string why = regroup_bodies_that_left(); !why.empty()) return why;
+    }
   }
   exchange_and_search();
+  if (bodies_left && contact_) {
+    // As after a phase transition: the rebuilt bodies' contact forces for the next step.
+    Timer tc(timer(SpringDashpotContact<D>::kName));
+    contact_->refresh(nl_, comm_);
+  }
   compute_density_and_pressure(dt);
   apply_wall_condition();
   transport_scalars(dt);  // Fuchs 2021 eq. 37: rates from T^n at r^{n+1}, rho^{n+1}
@@ -707,6 +748,7 @@ void Simulation<D, K>::integrate_step(double dt) {
     bodies_->update_accelerations(t_);
     bodies_->update_owned_velocities();  // eq. 40
   }
+  return {};
 }
 
 template <int D, class K>
@@ -878,7 +920,7 @@ void Simulation<D, K>::sample_bodies() {
   // Fixed width: slots of bodies not born yet (phase transitions) or gone are NaN.
   std::vector<RigidBody<D>> padded;
   const std::vector<RigidBody<D>>* list = &bodies_->bodies();
-  if (phase_) {
+  if (phase_ || leaving_) {
     padded = bodies_->bodies();
     RigidBody<D> none;
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -911,8 +953,9 @@ void Simulation<D, K>::sample_bodies() {
     n.push_back(static_cast<double>(b.contacts));
     ke.push_back(b.kinetic_energy());
     mass.push_back(b.mass);
-    serial.push_back(b.active() || !phase_ ? static_cast<double>(b.serial)
-                                           : std::numeric_limits<double>::quiet_NaN());
+    serial.push_back(b.active() || (!phase_ && !leaving_)
+                         ? static_cast<double>(b.serial)
+                         : std::numeric_limits<double>::quiet_NaN());
     for (int p = 0; p < RigidBodies<D>::A; ++p)
       for (int r = 0; r < RigidBodies<D>::A; ++r) inertia.push_back(b.inertia_body(p, r));
   }
@@ -1197,8 +1240,9 @@ typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
     rep.diagnosis = buf;
     return rep;
   }
-  integrate_step(dt);
-  if (std::string why = apply_phase_transitions(); !why.empty()) {
+  std::string why = integrate_step(dt);
+  if (why.empty()) why = apply_phase_transitions();
+  if (!why.empty()) {
     StepReport rep;
     rep.violated = true;
     rep.diagnosis = why;

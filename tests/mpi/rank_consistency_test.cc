@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 
 #include "case/validate.h"
@@ -332,6 +333,24 @@ TEST(RankConsistency, OpenChannelCreatesAndDeletesIdentically) {
   EXPECT_GT(out.back(), 100.0);
   EXPECT_EQ(in, r4.series("open_boundaries/inlet"));
   EXPECT_EQ(out, r4.series("open_boundaries/outlet"));
+}
+
+TEST(RankConsistency, ABodyLeavesThroughTheOutletIdentically) {
+  // The disk's particles are deleted at the outlet on whichever rank owns them, and every
+  // rank rebuilds what remains of the body from the same gathered particles.
+  auto c = test::load_case("channel_body_outflow_2d");
+  check_rank_counts("body_outflow", c, 800);  // t = 0.46: the disk is gone
+  if (world_rank() != 0) return;
+  const std::string base = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_body_outflow_";
+  test::ResultReader r1(base + "1/result.h5"), r4(base + "4/result.h5");
+  // Bitwise, since the slot of a body that is gone holds NaN.
+  const auto same_bits = [](const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+  };
+  const auto mass = r1.series("bodies/mass");
+  EXPECT_TRUE(same_bits(mass, r4.series("bodies/mass")));
+  EXPECT_TRUE(same_bits(r1.series("bodies/velocity"), r4.series("bodies/velocity")));
+  EXPECT_TRUE(std::isnan(mass.back())) << "the disk did not leave within 800 steps";
 }
 
 TEST(RankConsistency, OpenDuct3D) {

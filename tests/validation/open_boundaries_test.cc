@@ -205,5 +205,63 @@ TEST(OpenBoundaries, ChannelWithVelocityOutletKeepsItsMass) {
   EXPECT_NEAR(r.late / r.early, 1.0, 0.005);
 }
 
+TEST(OpenBoundaries, AFreeBodyLeavesThroughTheOutletPieceByPiece) {
+  // A neutrally buoyant disk carried down the channel passes the pressure outlet
+  // (cases/channel_body_outflow_2d.textproto): its particles leave the run at the outlet's
+  // far face like the fluid's, what remains of it moves on as a rigid body with the mass it
+  // has left (Fuchs 2021 eq. 29; before, the run stopped on the domain guard), and no
+  // particle is lost uncounted.
+  const auto c = test::load_case("channel_body_outflow_2d");
+  ASSERT_DOUBLE_EQ(c.time().end_time(), 0.6);
+  const std::string dir = test::output_dir("open_channel_body_leaves");
+  const RunOutcome r = test::run(c, dir);
+  ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+  test::ResultReader rr(dir + "/result.h5");
+  const auto shape = rr.series_shape("bodies/mass");  // samples x slots
+  ASSERT_EQ(shape.size(), 2u);
+  const std::size_t slots = shape[1];
+  const auto t = rr.series("bodies/time"), mass = rr.series("bodies/mass");
+  const auto vel = rr.series("bodies/velocity");
+  const double m0 = mass[0];
+  double prev = m0, t_first = -1, t_gone = -1, v_min = 1e300;
+  int partly = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    for (std::size_t j = 1; j < slots; ++j)
+      EXPECT_TRUE(std::isnan(mass[k * slots + j])) << "a second body at t = " << t[k];
+    const double mk = mass[k * slots];
+    if (std::isnan(mk)) {
+      if (t_gone < 0) t_gone = t[k];
+      continue;
+    }
+    EXPECT_LT(t_gone, 0.0) << "the body came back at t = " << t[k];
+    EXPECT_LE(mk, prev) << "t = " << t[k];
+    if (mk < m0) {
+      if (t_first < 0) t_first = t[k];
+      ++partly;
+      v_min = std::min(v_min, vel[k * slots * 2]);
+    }
+    prev = mk;
+  }
+  std::printf(
+      "disk of mass %.4g: first particles out at t = %.3f, gone at t = %.3f, %d samples "
+      "partly out, its speed then >= %.3f\n",
+      m0, t_first, t_gone, partly, v_min);
+  EXPECT_GT(t_first, 0.0);
+  EXPECT_GT(t_gone, t_first);
+  EXPECT_GE(partly, 5);
+  EXPECT_GT(v_min, 0.5);  // still carried along by the flow while it is cut
+  // Particles in the run (fluid and rigid) = initial + entered - left, the disk's included.
+  const auto count = [](const test::Snapshot& snap) {
+    return static_cast<double>(
+        std::count_if(snap.kind.begin(), snap.kind.end(), [](std::uint8_t k) { return k != 1; }));
+  };
+  const test::Snapshot first = rr.snapshot(0), last = rr.snapshot(rr.snapshot_count() - 1);
+  const double in = rr.series("open_boundaries/inlet").back();
+  const double out = rr.series("open_boundaries/outlet").back();
+  EXPECT_DOUBLE_EQ(last.time, 0.6);
+  EXPECT_EQ(count(last), count(first) + in - out);
+  EXPECT_EQ(std::count(last.kind.begin(), last.kind.end(), std::uint8_t{2}), 0);
+}
+
 }  // namespace
 }  // namespace sph

@@ -1,0 +1,76 @@
+#pragma once
+// Rebuilding bodies after some of their particles changed (Fuchs 2021, "Modeling thermally
+// driven reversible phase transitions", eq. 29): phase transitions (a particle melted out of
+// a body, or froze onto one) and open boundaries (a body's particles left through an outlet)
+// both end here.
+//
+// The rigid particles of every involved body, and the rigid particles without a body (body
+// index -1: solidified this step), are linked when closer than the join radius and either in
+// the same body or one of them new. Each connected piece becomes a body: a piece of an old
+// body keeps it (a body broken in two becomes two), a piece joining several bodies merges
+// them, a piece of only new particles starts a new body. Mass, centre of mass and inertia are
+// recomputed from the particles (eqs. 20-23, Remark 13). A piece of one old body keeps its
+// angular velocity and gets u_k = u'_k + omega_k x (r_k - r'_k) (eq. 29); a merged or new
+// body gets the total linear and angular momentum of what it is made of. Particles that left
+// a body (melted, or deleted at an outlet) take their momentum with them.
+//
+// Forces: a rebuilt body gets the sum of its own particles' fluid forces (eq. 19) and their
+// moments about its new centre (eqs. 24-26), not its parent's: a piece broken off a body
+// would otherwise be kicked with the whole body's force over its own small mass. A new
+// particle brings no fluid force (its force as a fluid particle mixes in rigid and wall
+// neighbours), one step's half kick of one particle's force. The contact force of a rebuilt
+// body is zero: the simulation evaluates contact again with the new bodies
+// (SpringDashpotContact::refresh) after searching neighbours again. Its mean contact force
+// over the last step (what the fluid's wall condition sees, RigidBody) is each parent's in
+// proportion to the mass the piece took from it.
+//
+// Parallel: the particles taking part are gathered on every rank (ordered by id) and every
+// rank runs the same union-find, so the body table stays replicated and results do not depend
+// on the rank count. Only steps that change a body pay for the gather, and only for the
+// bodies involved.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/bodies/rigid_bodies.h"
+
+namespace sph {
+
+template <int D>
+class BodyRegrouping {
+ public:
+  // `slots_field`: the case field that sets max_bodies, named in the error when a regrouping
+  // needs more bodies at once.
+  BodyRegrouping(double join_radius, std::size_t max_bodies, double dx, std::string slots_field)
+      : join_radius_(join_radius),
+        max_bodies_(max_bodies),
+        dx_(dx),
+        slots_field_(std::move(slots_field)) {}
+
+  std::size_t max_bodies() const { return max_bodies_; }
+
+  // `involved[k] != 0` for the bodies that lost or may gain particles (the first
+  // bodies().size() entries, identical on every rank). Sets the body index, body-frame
+  // offset, rigid velocity (eq. 40) and acceleration of the owned particles of the rebuilt
+  // bodies. Collective. Returns an error when the run cannot go on, else "".
+  std::string run(ParticleStore<D>& s, RigidBodies<D>& bodies,
+                  const std::vector<std::int64_t>& involved, const Comm& comm) const;
+
+ private:
+  struct Record {  // a particle taking part in a regrouping
+    ParticleId id;
+    std::int32_t old_body;  // -1: new
+    double m;
+    Vec<D> x, v;
+    Vec<D> f;  // fluid force on the particle (eq. 19) of this step; zero for a new one
+  };
+  std::string regroup(std::vector<Record>& recs, const std::vector<std::int64_t>& involved,
+                      RigidBodies<D>& bodies) const;
+
+  double join_radius_;
+  std::size_t max_bodies_;
+  double dx_;
+  std::string slots_field_;
+};
+
+}  // namespace sph
