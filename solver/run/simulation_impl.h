@@ -68,6 +68,7 @@ void Simulation<D, K>::build_units() {
   const auto& fm = c_.fluid_model();
   units_.push_back("halo_exchange");
   units_.push_back("neighbor_search");
+  units_.push_back("pair_kernel");
   if (fm.density() == v1::CONTINUITY) {
     units_.push_back(ContinuityDensity<D, K>::kName);
   } else {
@@ -577,14 +578,17 @@ void Simulation<D, K>::exchange_and_search() {
     if (step_ % 25 == 0) s_.reorder_owned(owned_cell_order(s_, grid_, halo_.my_box()));
     halo_.build_ghosts(s_);
   }
-  Timer tm(timer("neighbor_search"));
-  if (contact_) {
-    ContactQuery q{bodies_->body_index().data(), contact_->candidate_range(),
-                   contact_->with_walls()};
-    nl_.build(s_, grid_, halo_.ghost_box(), rc_, &q, rigid_all());
-  } else {
-    nl_.build(s_, grid_, halo_.ghost_box(), rc_, nullptr, rigid_all());
+  {
+    Timer tm(timer("neighbor_search"));
+    if (contact_) {
+      ContactQuery q{bodies_->body_index().data(), contact_->candidate_range(),
+                     contact_->with_walls()};
+      nl_.build(s_, grid_, halo_.ghost_box(), rc_, &q, rigid_all());
+    } else {
+      nl_.build(s_, grid_, halo_.ghost_box(), rc_, nullptr, rigid_all());
+    }
   }
+  Timer tm(timer("pair_kernel"));
   pk_.prepare(s_, nl_, kernel_);
 }
 
@@ -1111,7 +1115,8 @@ void Simulation<D, K>::maybe_rebalance() {
 template <int D, class K>
 std::map<std::string, std::size_t> Simulation<D, K>::memory_by_owner() const {
   auto m = s_.memory_by_owner();
-  m["neighbor_search"] += nl_.bytes() + pk_.bytes();
+  m["neighbor_search"] += nl_.bytes();
+  m["pair_kernel"] += pk_.bytes();
   // Units' scratch arrays (their columns are counted with the store).
   if (forces_) m[FluidForces<D, K>::kName] += forces_->bytes();
   if (continuity_) m[ContinuityDensity<D, K>::kName] += continuity_->bytes();
@@ -1180,7 +1185,7 @@ void Simulation<D, K>::start() {
                                    (in_case ? "without " : "with ") + what + "; this case " +
                                    (in_case ? "has them" : "has none"));
       };
-      expect(bodies_.has_value(), "bodies.count", "rigid bodies");
+      expect(bodies_.has_value(), "bodies.count", "rigid bodies (or phase transitions)");
       expect(open_.has_value(), "open_next_id", "open boundaries");
       if (bodies_) bodies_->load(state);
       if (open_) open_->load(state);
