@@ -6,6 +6,7 @@
 #include <cstring>
 #include <map>
 #include <numeric>
+#include <stdexcept>
 #include <unordered_map>
 
 namespace sph {
@@ -72,17 +73,27 @@ std::string BodyRegrouping<D>::run(ParticleStore<D>& s, RigidBodies<D>& bodies,
     const Vec<D> r = s.x[i] - b.com;
     offset[i] = rotation_of(b).transpose() * r;
     s.v[i] = b.velocity + cross<D>(b.omega, r);
-    accel[i] = b.acceleration + cross<D>(b.angular_acceleration, r);
+    accel[i] = b.acceleration + cross<D>(b.angular_acceleration, r) +
+               cross<D>(b.omega, cross<D>(b.omega, r));
   }
   return {};
 }
 
 template <int D>
-std::string BodyRegrouping<D>::regroup(std::vector<Record>& recs,
-                                       const std::vector<std::int64_t>& involved,
-                                       RigidBodies<D>& bodies) const {
-  auto& bs = bodies.bodies();
-  const std::size_t n = recs.size(), nb_old = bs.size();
+std::map<std::size_t, std::vector<std::size_t>> BodyRegrouping<D>::pieces_of(
+    const std::vector<Record>& recs) const {
+  const std::size_t n = recs.size();
+  std::map<std::size_t, std::vector<std::size_t>> pieces;
+  if (pieces_ == Pieces::kWhole) {
+    std::map<std::int32_t, std::size_t> first;  // old body -> its first record
+    for (std::size_t a = 0; a < n; ++a) {
+      if (recs[a].old_body < 0)
+        throw std::logic_error("BodyRegrouping: a particle without a body among whole bodies");
+      const auto it = first.try_emplace(recs[a].old_body, a).first;
+      pieces[it->second].push_back(a);
+    }
+    return pieces;
+  }
   const double jr = join_radius_;
   // Links within the join radius: same body, or one of the two new (cell hashing).
   MinRootSets sets(n);
@@ -109,8 +120,17 @@ std::string BodyRegrouping<D>::regroup(std::vector<Record>& recs,
           }
         }
   // Pieces in order of their smallest id.
-  std::map<std::size_t, std::vector<std::size_t>> pieces;
   for (std::size_t a = 0; a < n; ++a) pieces[sets.find(a)].push_back(a);
+  return pieces;
+}
+
+template <int D>
+std::string BodyRegrouping<D>::regroup(std::vector<Record>& recs,
+                                       const std::vector<std::int64_t>& involved,
+                                       RigidBodies<D>& bodies) const {
+  auto& bs = bodies.bodies();
+  const std::size_t n = recs.size(), nb_old = bs.size();
+  const auto pieces = pieces_of(recs);
 
   // Which piece keeps an old body: the one holding most of its mass (ties: the first piece).
   std::map<std::int32_t, std::pair<double, std::size_t>> main_piece;  // body -> (mass, root)
@@ -234,8 +254,13 @@ std::string BodyRegrouping<D>::regroup(std::vector<Record>& recs,
     } else if (pure) {
       // Eq. 29: rigid motion with the unchanged angular velocity.
       const RigidBody<D>& o = old[static_cast<std::size_t>(first_old)];
-      nbody.velocity = o.velocity + cross<D>(o.omega, c - o.com);
+      const Vec<D> d = c - o.com;
+      nbody.velocity = o.velocity + cross<D>(o.omega, d);
       nbody.omega = o.omega;
+      // The same rigid motion's acceleration at the new centre (the old one's is kept).
+      nbody.acceleration = o.acceleration + cross<D>(o.angular_acceleration, d) +
+                           cross<D>(o.omega, cross<D>(o.omega, d));
+      nbody.angular_acceleration = o.angular_acceleration;
     } else {
       nbody.velocity = P / M;
       if constexpr (D == 2)

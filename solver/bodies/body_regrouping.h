@@ -14,6 +14,11 @@
 // body gets the total linear and angular momentum of what it is made of. Particles that left
 // a body (melted, or deleted at an outlet) take their momentum with them.
 //
+// Bodies cut at an outlet (Pieces::kWhole) are not split: a rigid body stays one body however
+// much of it is gone, even if what remains is not connected (a body built of separate shapes,
+// or a non-convex one cut across), so the pieces of each old body are simply its remaining
+// particles and no new bodies arise.
+//
 // Forces: a rebuilt body gets the sum of its own particles' fluid forces (eq. 19) and their
 // moments about its new centre (eqs. 24-26), not its parent's: a piece broken off a body
 // would otherwise be kicked with the whole body's force over its own small mass. A new
@@ -29,6 +34,7 @@
 // on the rank count. Only steps that change a body pay for the gather, and only for the
 // bodies involved.
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -39,6 +45,9 @@ namespace sph {
 template <int D>
 class BodyRegrouping {
  public:
+  // kConnected: eq. 29's pieces (phase transitions); kWhole: each old body stays one (outlets).
+  enum class Pieces { kConnected, kWhole };
+
   // `slots_field`: the case field that sets max_bodies, named in the error when a regrouping
   // needs more bodies at once.
   BodyRegrouping(double join_radius, std::size_t max_bodies, double dx, std::string slots_field)
@@ -47,12 +56,22 @@ class BodyRegrouping {
         dx_(dx),
         slots_field_(std::move(slots_field)) {}
 
+  // Bodies that only lose particles (cut at an outlet) and are never split.
+  static BodyRegrouping whole_bodies(double dx) {
+    BodyRegrouping r(0.0, 0, dx, "");
+    r.pieces_ = Pieces::kWhole;
+    return r;
+  }
+
   std::size_t max_bodies() const { return max_bodies_; }
 
   // `involved[k] != 0` for the bodies that lost or may gain particles (the first
   // bodies().size() entries, identical on every rank). Sets the body index, body-frame
-  // offset, rigid velocity (eq. 40) and acceleration of the owned particles of the rebuilt
-  // bodies. Collective. Returns an error when the run cannot go on, else "".
+  // offset, rigid velocity (eq. 40) and acceleration (as RigidBodies::place_owned_particles)
+  // of the owned particles of the rebuilt bodies; a piece of one body keeps the rigid motion
+  // of its particles, accelerations included (the wall condition may read them before the
+  // next placement: a cut at an outlet happens mid-step). Collective. Returns an error when
+  // the run cannot go on, else "".
   std::string run(ParticleStore<D>& s, RigidBodies<D>& bodies,
                   const std::vector<std::int64_t>& involved, const Comm& comm) const;
 
@@ -67,6 +86,11 @@ class BodyRegrouping {
   std::string regroup(std::vector<Record>& recs, const std::vector<std::int64_t>& involved,
                       RigidBodies<D>& bodies) const;
 
+  // Which records form each piece: indices into the id-ordered records, keyed by their
+  // smallest index.
+  std::map<std::size_t, std::vector<std::size_t>> pieces_of(const std::vector<Record>& recs) const;
+
+  Pieces pieces_ = Pieces::kConnected;
   double join_radius_;
   std::size_t max_bodies_;
   double dx_;

@@ -61,7 +61,6 @@ class PhaseTransitions {
   std::int64_t melted_total() const { return melted_total_; }
   std::int64_t solidified_total() const { return solidified_total_; }
   std::size_t max_bodies() const { return regrouping_.max_bodies(); }
-  const BodyRegrouping<D>& regrouping() const { return regrouping_; }
   // The running totals are cumulative series: a resumed run continues them.
   void save(CheckpointState& state) const {
     state["phase_melted_total"] = static_cast<double>(melted_total_);

@@ -122,8 +122,10 @@ class OpenBoundaries {
     std::fill(tally_.begin(), tally_.end(), 0);
     for (std::size_t i = 0; i < s_.owned(); ++i) {
       if (s_.kind[i] != Kind::kFluid) {  // e.g. solidified in a buffer
-        zone_[i] = 0;
-        if (bodies && s_.kind[i] == Kind::kRigid) leave_if_out(i, *bodies, *lost);
+        if (bodies && s_.kind[i] == Kind::kRigid)
+          leave_if_out(i, *bodies, *lost);
+        else
+          zone_[i] = 0;
         continue;
       }
       std::uint8_t z = zone_[i];
@@ -233,17 +235,35 @@ class OpenBoundaries {
   }
 
  private:
+  // A rigid particle of a free body follows the fluid's rule: it enters an outflow buffer
+  // through the inner face and leaves the run at the far face. (A body beyond the far face
+  // that never came through the buffer is not the outflow's, as for the fluid.)
   void leave_if_out(std::size_t i, const RigidBodies<D>& bodies, std::vector<std::int64_t>& lost) {
     const std::int32_t k = bodies.body_index()[i];
-    if (k < 0 || bodies.bodies()[static_cast<std::size_t>(k)].motion != BodyMotion::kFree) return;
-    for (std::size_t b = 0; b < zones_.size(); ++b) {
-      const OpenBoundaryZone<D>& o = zones_[b];
-      if (!o.inflow() && o.xi(s_.x[i]) >= o.outer_xi() && o.across(s_.x[i])) {
-        doomed_.push_back(static_cast<std::uint32_t>(i));
-        ++tally_[b];
-        ++lost[static_cast<std::size_t>(k)];
-        return;
+    std::uint8_t z = zone_[i];
+    if (k < 0 || bodies.bodies()[static_cast<std::size_t>(k)].motion != BodyMotion::kFree ||
+        (z != 0 && zones_[z - 1u].inflow())) {  // e.g. frozen in an inflow buffer
+      zone_[i] = 0;
+      return;
+    }
+    const Vec<D>& x = s_.x[i];
+    if (z == 0) {
+      for (std::size_t b = 0; b < zones_.size(); ++b) {
+        const OpenBoundaryZone<D>& o = zones_[b];
+        if (!o.inflow() && o.xi(x) > o.inner_xi() && o.xi(x) < o.outer_xi() && o.across(x)) {
+          z = zone_[i] = static_cast<std::uint8_t>(b + 1);
+          break;
+        }
       }
+      if (z == 0) return;
+    }
+    const OpenBoundaryZone<D>& o = zones_[z - 1u];
+    if (o.xi(x) >= o.outer_xi()) {
+      doomed_.push_back(static_cast<std::uint32_t>(i));
+      ++tally_[z - 1u];
+      ++lost[static_cast<std::size_t>(k)];
+    } else if (o.xi(x) <= o.inner_xi()) {
+      zone_[i] = 0;
     }
   }
 

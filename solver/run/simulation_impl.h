@@ -197,9 +197,7 @@ void Simulation<D, K>::build_units() {
   if (walls_) result_.add_series("diagnostics/max_solid_fraction");
   if (contact_) result_.add_series("diagnostics/min_contact_distance");
   if (bodies_) {
-    body_slots_ = leaving_ ? leaving_->max_bodies()
-                  : phase_ ? phase_->max_bodies()
-                           : static_cast<std::size_t>(c_.bodies_size());
+    body_slots_ = phase_ ? phase_->max_bodies() : static_cast<std::size_t>(c_.bodies_size());
     const auto nb = static_cast<std::uint64_t>(body_slots_);
     const std::uint64_t dd = D, aa = RigidBodies<D>::A;
     result_.add_series("bodies/time");
@@ -365,14 +363,8 @@ void Simulation<D, K>::build_open_boundaries() {
   for (const auto& z : open_->zones()) result_.add_series("open_boundaries/" + z.name());
   const bool outflow = std::any_of(open_->zones().begin(), open_->zones().end(),
                                    [](const OpenBoundaryZone<D>& z) { return !z.inflow(); });
-  if (bodies_ && outflow) {
-    // A body broken apart at an outlet needs slots like one broken by melting.
-    if (phase_)
-      leaving_.emplace(phase_->regrouping());
-    else
-      leaving_.emplace(1.5 * dx_, 2 * static_cast<std::size_t>(c_.bodies_size()) + 64, dx_,
-                       "2 x the case's bodies + 64: pieces of bodies cut at an outlet");
-  }
+  // Free bodies lose the particles carried out; what remains stays one body.
+  if (bodies_ && outflow) leaving_.emplace(BodyRegrouping<D>::whole_bodies(dx_));
 }
 
 // `lost_` (summed over the ranks) names the bodies that lost particles at an outlet.

@@ -4,11 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "solver/boundaries/open_boundaries.h"
 #include "solver/boundaries/open_boundary_zone.h"
 #include "solver/boundaries/particle_ledger.h"
 #include "solver/core/kernel.h"
+#include "tests/support/body_scene.h"
 #include "tests/support/test_cases.h"
 
 namespace sph {
@@ -102,6 +104,58 @@ TEST(OpenBoundaries, BufferParticlesMoveWithTheirPrescribedVelocityAsTransportVe
     EXPECT_EQ(transport[i], u) << "particle " << i << ": stale transport velocity";
   }
   EXPECT_NEAR(s.x[2][0], 0.01 - 0.2, 1e-15);  // the copy refills the lane upstream
+}
+
+TEST(OpenBoundaries, AFreeBodyLeavesOnlyThroughTheOutletsBuffer) {
+  // Rigid particles of free bodies follow the fluid's rule at an outflow: taken in at the
+  // inner face (x = 2), deleted at the far face (x = 2.2). Body "through" straddles the inner
+  // face and moves on by 0.1; body "beyond" lies past the far face (the domain goes on there)
+  // and never came through the buffer: it is not the outflow's.
+  auto c = test::load_case("channel_body_outflow_2d");
+  c.mutable_domain()->mutable_hi()->set_x(3.0);
+  v1::Case scene = c;  // only the bodies' particles
+  scene.clear_fluids();
+  scene.clear_walls();
+  scene.clear_open_boundaries();
+  scene.clear_bodies();
+  for (const auto& [name, lo, hi] : {std::tuple{"through", 1.9, 2.15}, {"beyond", 2.5, 2.7}}) {
+    auto* b = scene.add_bodies();
+    b->set_name(name);
+    b->set_material("solid");
+    auto* box = b->mutable_shape()->mutable_box();
+    box->mutable_lo()->set_x(lo);
+    box->mutable_lo()->set_y(0.4);
+    box->mutable_hi()->set_x(hi);
+    box->mutable_hi()->set_y(0.6);
+  }
+  ParticleStore<2> s;
+  auto bodies = bodies_of<2>(scene, s);
+  std::vector<OpenBoundaryZone<2>> zones;
+  zones.emplace_back(c, 1, 0, 1.0);  // the pressure outlet
+  const QuinticSpline<2> kernel(c.dx());
+  const std::vector<FluidConstants> fluids(1);
+  OpenBoundaries<2, QuinticSpline<2>> open(s, kernel, std::move(zones), fluids, 0.0025);
+  open.zone().resize(s.owned());
+  open.ledger().set_next_id(static_cast<ParticleId>(s.owned()));
+  const Comm comm(MPI_COMM_SELF);
+  auto count = [&](std::int32_t k) {
+    std::int64_t n = 0;
+    for (std::size_t i = 0; i < s.owned(); ++i) n += bodies->body_index()[i] == k;
+    return n;
+  };
+  const auto n_through = count(0), n_beyond = count(1);
+  std::vector<std::int64_t> lost(2, 0);
+  EXPECT_EQ(open.exchange_particles(0.0, nullptr, comm, bodies.get(), &lost), 0);
+  EXPECT_EQ(lost, (std::vector<std::int64_t>{0, 0}));
+  for (std::size_t i = 0; i < s.owned(); ++i) s.x[i][0] += 0.1;
+  lost.assign(2, 0);
+  // x in (2.1, 2.15] before: in the buffer, now past x = 2.2 (one column of dx = 0.05).
+  const std::int64_t gone = open.exchange_particles(0.0, nullptr, comm, bodies.get(), &lost);
+  EXPECT_EQ(lost[0], n_through / 5);
+  EXPECT_EQ(lost[1], 0);
+  EXPECT_EQ(gone, -lost[0]);
+  EXPECT_EQ(count(1), n_beyond);
+  EXPECT_EQ(open.through()[0], lost[0]);
 }
 
 TEST(OpenBoundaryZone, LanesInsideWallsCarryNoFlux) {
