@@ -131,14 +131,7 @@ class OpenBoundaries {
       std::uint8_t z = zone_[i];
       const Vec<D>& x = s_.x[i];
       if (z == 0) {
-        for (std::size_t b = 0; b < zones_.size(); ++b) {
-          const OpenBoundaryZone<D>& o = zones_[b];
-          // Entering through the inner face (fluid beyond the far face is not the outflow's).
-          if (!o.inflow() && o.xi(x) > o.inner_xi() && o.xi(x) < o.outer_xi() && o.across(x)) {
-            z = zone_[i] = static_cast<std::uint8_t>(b + 1);
-            break;
-          }
-        }
+        z = zone_[i] = outflow_buffer_at(x);
         if (z == 0) continue;
       }
       const OpenBoundaryZone<D>& o = zones_[z - 1u];
@@ -235,6 +228,17 @@ class OpenBoundaries {
   }
 
  private:
+  // b + 1 for the outflow whose buffer holds x (a particle not yet in a buffer got there
+  // through the inner face: what lies beyond the far face is not the outflow's), else 0.
+  std::uint8_t outflow_buffer_at(const Vec<D>& x) const {
+    for (std::size_t b = 0; b < zones_.size(); ++b) {
+      const OpenBoundaryZone<D>& o = zones_[b];
+      if (!o.inflow() && o.xi(x) > o.inner_xi() && o.xi(x) < o.outer_xi() && o.across(x))
+        return static_cast<std::uint8_t>(b + 1);
+    }
+    return 0;
+  }
+
   // A rigid particle of a free body follows the fluid's rule: it enters an outflow buffer
   // through the inner face and leaves the run at the far face. (A body beyond the far face
   // that never came through the buffer is not the outflow's, as for the fluid.)
@@ -248,13 +252,7 @@ class OpenBoundaries {
     }
     const Vec<D>& x = s_.x[i];
     if (z == 0) {
-      for (std::size_t b = 0; b < zones_.size(); ++b) {
-        const OpenBoundaryZone<D>& o = zones_[b];
-        if (!o.inflow() && o.xi(x) > o.inner_xi() && o.xi(x) < o.outer_xi() && o.across(x)) {
-          z = zone_[i] = static_cast<std::uint8_t>(b + 1);
-          break;
-        }
-      }
+      z = zone_[i] = outflow_buffer_at(x);
       if (z == 0) return;
     }
     const OpenBoundaryZone<D>& o = zones_[z - 1u];
