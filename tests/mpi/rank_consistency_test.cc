@@ -480,6 +480,39 @@ TEST(RankConsistency, BolusesResumeFromCheckpointOnAnyRankCount) {
   check_resume("boluses", c, 400, 300);
 }
 
+TEST(RankConsistency, ABodyHalfwayThroughTheOutletResumesFromCheckpoint) {
+  // The checkpoint falls while the disk is partly deleted at the outlet: which of its
+  // particles came into the outflow's buffer (their zone column) and what remains of the body
+  // (its state) must both continue, or the particles deleted after the resume differ.
+  auto c = test::load_case("channel_body_outflow_2d");
+  c.mutable_output()->set_series_interval(1e-12);  // every step: rows after the checkpoint
+  constexpr int kAt = 650;                         // t = 0.37: first particle out at 0.32
+  check_resume("body_outflow", c, 800, kAt);
+  if (world_rank() != 0) return;
+  const std::string dir = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_body_outflow_resume_";
+  test::ResultReader rr(dir + "reference/result.h5");
+  const auto step = rr.series("diagnostics/step"), time = rr.series("diagnostics/time");
+  const auto k = static_cast<std::size_t>(
+      std::find(step.begin(), step.end(), static_cast<double>(kAt)) - step.begin());
+  ASSERT_LT(k, step.size()) << "no sample at the checkpoint's step";
+  const auto body_time = rr.series("bodies/time"), mass = rr.series("bodies/mass");
+  const auto b = static_cast<std::size_t>(std::find(body_time.begin(), body_time.end(), time[k]) -
+                                          body_time.begin());
+  ASSERT_LT(b, mass.size()) << "no body sample at the checkpoint's time";
+  std::printf("disk mass at the checkpoint %.4f of %.4f, at the end %g\n", mass[b], mass[0],
+              mass.back());
+  EXPECT_GT(mass[b], 0.0);
+  EXPECT_LT(mass[b], mass[0]) << "the checkpoint is not in the middle of the exit";
+  EXPECT_TRUE(std::isnan(mass.back())) << "the disk did not leave within 800 steps";
+  for (int ranks : {4, 1}) {
+    test::ResultReader rs(dir + "resumed_" + std::to_string(ranks) + "/result.h5");
+    const auto m = rs.series("bodies/mass");
+    ASSERT_EQ(m.size(), mass.size()) << ranks << " ranks";
+    EXPECT_EQ(std::memcmp(m.data(), mass.data(), m.size() * sizeof(double)), 0)
+        << "body mass differs after resuming on " << ranks << " ranks";
+  }
+}
+
 TEST(RankConsistency, DamBreakRebalances) {
   // After the collapse the particles pile up at the far wall; the decomposition follows. The
   // balanced quantity is the work (fluid particles weigh ten wall particles).
