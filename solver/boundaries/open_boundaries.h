@@ -45,6 +45,8 @@
 // Not supported: backflow through an outflow for longer than the buffer length (the buffer
 // empties from its far end), fluid entering an inflow buffer against the flow (it stays
 // fluid), directions that are not along a coordinate axis.
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <stdexcept>
@@ -111,8 +113,8 @@ class OpenBoundaries {
   // After the drift, at the new time t: particles cross faces, inflow buffers refill,
   // outflows delete, prescribed velocities (and transport velocities, when given) are
   // updated. With `bodies`, rigid particles of free bodies past an outflow's outer face are
-  // deleted too and `lost[k]` (sized to the bodies) counts those of body k on this rank.
-  // Collective. Returns the change of the global particle count.
+  // deleted too and `lost[k]` (sized to the bodies, zero on entry) counts those of body k
+  // over all ranks. Collective. Returns the change of the global particle count.
   std::int64_t exchange_particles(double t, Column<Vec<D>>* transport, const Comm& comm,
                                   const RigidBodies<D>* bodies = nullptr,
                                   std::vector<std::int64_t>* lost = nullptr) {
@@ -150,7 +152,14 @@ class OpenBoundaries {
         zone_[i] = 0;
       }
     }
+    // The bodies' counts ride in the ledger's one collective behind the zones' tallies.
+    if (lost) tally_.insert(tally_.end(), lost->begin(), lost->end());
     const auto totals = ledger_.apply(s_, parents_, doomed_, tally_, comm);
+    if (lost) {
+      std::copy(tally_.begin() + static_cast<std::ptrdiff_t>(zones_.size()), tally_.end(),
+                lost->begin());
+      tally_.resize(zones_.size());
+    }
     for (std::size_t k = 0; k < parents_.size(); ++k) {
       const std::size_t i = totals.first_new + k;
       const std::uint8_t z = parent_zone_[k];

@@ -720,7 +720,6 @@ std::string Simulation<D, K>::integrate_step(double dt) {
           open_->exchange_particles(t_, transport_, comm_, leaving_ ? &*bodies_ : nullptr, &lost_);
     }
     if (leaving_) {
-      comm_.sum_inplace(lost_);
       bodies_left = std::any_of(lost_.begin(), lost_.end(), [](std::int64_t n) { return n > 0; });
       if (bodies_left)
         if (std::string why = regroup_bodies_that_left(); !why.empty()) return why;
