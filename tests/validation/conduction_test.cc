@@ -4,7 +4,10 @@
 //  - two semi-infinite blocks of different effusivity e = sqrt(k rho c) in contact: the contact
 //    temperature is (e1 T1 + e2 T2)/(e1 + e2), here fluid against a fixed rigid body,
 //  - steady conduction through two layers between walls at 1 and 0,
-//  - a top hat of concentration spreading (difference of erfs).
+//  - a top hat of concentration spreading (difference of erfs),
+//  - a uniform volumetric heat source: the steady parabola between cold walls, and heating
+//    at q / (rho c_p) without conduction,
+//  - a region of fixed concentration as the source of an erfc profile.
 // All are 1D problems in a strip periodic in y, fluid at rest.
 #include <gtest/gtest.h>
 
@@ -72,6 +75,12 @@ void report_order(const char* what, const std::vector<double>& dxs,
   std::printf("\n");
 }
 
+// The observed order between the two finest resolutions.
+double order(const std::vector<double>& dxs, const std::vector<double>& errors) {
+  const std::size_t k = dxs.size() - 1;
+  return std::log(errors[k - 1] / errors[k]) / std::log(dxs[k - 1] / dxs[k]);
+}
+
 TEST(Conduction, SemiInfiniteSlabErfc) {
   // kappa = rho = c_p = 1 (alpha = 1); the wall x < 0 held at 1, the fluid starts at 0.
   const double t_end = 0.01;
@@ -101,8 +110,7 @@ TEST(Conduction, SemiInfiniteSlabErfc) {
   }
   report_order("Semi-infinite slab, T_wall = 1, t = 0.01, max |T - erfc(x/2sqrt(t))|", dxs, errors);
   EXPECT_LT(errors.back(), 1e-3);
-  EXPECT_GT(std::log(errors[0] / errors[1]) / std::log(2.0), 1.5);  // second order
-  EXPECT_LT(errors.back(), errors.front());
+  EXPECT_GT(order(dxs, errors), 1.5);  // second order (measured 2.13)
 }
 
 TEST(Conduction, ContactTemperatureOfTwoMaterials) {
@@ -132,7 +140,9 @@ TEST(Conduction, ContactTemperatureOfTwoMaterials) {
   report_order("Two blocks, effusivity 1 | 2, contact temperature 1/3, t = 0.005, max |T - exact|",
                dxs, errors);
   EXPECT_LT(errors.back(), 2e-3);
-  EXPECT_LT(errors.back(), errors.front());
+  // Measured 1.28: the largest error sits at the material interface, where the harmonic mean
+  // of eq. (28) meets the kink of the profile between two particle rows.
+  EXPECT_GT(order(dxs, errors), 1.0);
 }
 
 TEST(Conduction, SteadyLayeredSlab) {
@@ -157,7 +167,9 @@ TEST(Conduction, SteadyLayeredSlab) {
   }
   report_order("Layered slab k = 1 | 3, steady, max |T - exact|", dxs, errors);
   EXPECT_LT(errors.back(), 1e-3);
-  EXPECT_LT(errors.back(), errors.front());
+  // Measured 1.02: first order, from the kink of the steady profile at the layer interface
+  // (the smooth profiles above and below converge at second order).
+  EXPECT_GT(order(dxs, errors), 0.8);
 }
 
 TEST(Diffusion, TopHatSpreads) {
@@ -184,7 +196,117 @@ TEST(Diffusion, TopHatSpreads) {
   }
   report_order("Top hat of concentration, D = 0.01, t = 0.25, max |C - exact|", dxs, errors);
   EXPECT_LT(errors.back(), 5e-4);
-  EXPECT_LT(errors.back(), errors.front());
+  EXPECT_GT(order(dxs, errors), 2.0);  // measured 2.84
+}
+
+TEST(Conduction, VolumetricSourceBetweenColdWallsGivesTheSteadyParabola) {
+  // q = 8 W/m^3 in a slab of k = 1 between walls held at 0: T = q x (1 - x) / (2 k), 1 at the
+  // middle. rho c_p = 2 (not 1), which the steady state does not see but the time to reach it
+  // does (t = 2.4 is about 12 diffusion times of the slowest mode).
+  auto exact = [](double x, double) { return 4 * x * (1 - x); };
+  std::vector<double> dxs = {0.05, 0.025}, errors;
+  for (double dx : dxs) {
+    const auto c = parse_case_text(strip(dx, 0, 1, R"(
+      materials { name: "f" density: 2 eos { sound_speed: 1 } heat_capacity: 1 thermal_conductivity: 1 }
+      fluids { material: "f" shape { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } }
+      walls { shape { box { lo { x: -1 y: 0 } hi { x: 0 y: 1 } } } temperature { value { constant: 0 } } }
+      walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } temperature { value { constant: 0 } } }
+      thermal { initial_temperature: 0 volumetric_heat_source: 8 }
+      time { end_time: 2.4 })"));
+    const std::string out = test::output_dir("conduction_source");
+    const RunOutcome r = test::run(c, out);
+    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    errors.push_back(max_error(out, "temperature", exact));
+  }
+  report_order("Uniform source q = 8 between walls at 0, steady, max |T - 4x(1-x)|", dxs, errors);
+  EXPECT_LT(errors.back(), 2e-3);
+  EXPECT_GT(order(dxs, errors), 1.5);
+}
+
+TEST(Conduction, VolumetricSourceHeatsAFluidAndABodyAtQOverRhoCp) {
+  // Without conduction (kappa = 0) each particle heats at q / (rho c_p): the fluid (rho c_p = 1)
+  // at 3 K/s, the fixed block (rho c_p = 4) at 0.75 K/s. The fluid's rho is its own
+  // (summation: 1 + 6e-5 on this lattice), the block's the material's.
+  const double q = 3, t_end = 0.5;
+  const auto c = parse_case_text(strip(0.05, 0, 1,
+                                       R"(
+    materials { name: "f" density: 1 eos { sound_speed: 10 } heat_capacity: 1 thermal_conductivity: 0 }
+    materials { name: "s" phase: SOLID density: 2 heat_capacity: 2 thermal_conductivity: 0 }
+    fluids { material: "f" shape { box { lo { x: 0 y: 0 } hi { x: 0.5 y: 1 } } } }
+    bodies { name: "block" material: "s" motion_type: FIXED shape { box { lo { x: 0.5 y: 0 } hi { x: 1 y: 1 } } } }
+    walls { shape { box { lo { x: -1 y: 0 } hi { x: 0 y: 1 } } } }
+    walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } }
+    thermal { initial_temperature: 0 volumetric_heat_source: )" +
+                                           num(q) + R"( }
+    time { end_time: )" + num(t_end) + R"( })"));
+  const std::string out = test::output_dir("conduction_source_only");
+  const RunOutcome r = test::run(c, out);
+  ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+  test::ResultReader rr(out + "/result.h5");
+  const int last = rr.snapshot_count() - 1;
+  const test::Snapshot s = rr.snapshot(last);
+  const std::vector<double> T = rr.snapshot_field(last, "temperature");
+  double fluid_err = 0, body_err = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s.kind[i] == 1) continue;  // walls
+    const bool body = s.kind[i] == 2;
+    const double expected = q * s.time * (body ? 1.0 / 4.0 : 1.0 / s.density[i]);
+    double& err = body ? body_err : fluid_err;
+    err = std::max(err, std::abs(T[i] - expected) / expected);
+  }
+  std::printf(
+      "source only, t = %.3f: largest relative error of T against q t / (rho c_p): fluid "
+      "%.1e, block %.1e\n",
+      s.time, fluid_err, body_err);
+  EXPECT_NEAR(s.time, t_end, 1e-9);
+  // At rest the fluid's density does not change over the run, so T = q t / (rho c_p) to
+  // rounding (measured 7e-15).
+  EXPECT_LT(fluid_err, 1e-9);
+  EXPECT_LT(body_err, 1e-9);
+}
+
+TEST(Diffusion, AFixedConcentrationRegionActsAsADirichletSource) {
+  // A fixed-concentration fluid (C = 1, e.g. gastric juice) on x < 0 against fluid at C = 0:
+  // C = erfc(x / (2 sqrt(D t / rho))) for x > 0, the fixed particles stay at 1 exactly, and
+  // the species taken up per unit height is rho 2 sqrt(D t / (rho pi)).
+  // First order, not second: the fixed particles hold C = 1 where the solution continued
+  // smoothly would exceed 1, so the profile has a kink at the interface, which eq. (28)
+  // smooths over a kernel width (the uptake lags as if the interface were about dx/2
+  // further out). A Dirichlet wall avoids this by its mirror value (Conduction tests above).
+  const double D = 0.01, t_end = 0.25;
+  auto exact = [&](double x, double t) {
+    return x < 0 ? 1.0 : std::erfc(x / (2 * std::sqrt(D * t)));
+  };
+  std::vector<double> dxs = {0.01, 0.005}, errors, uptake;
+  for (double dx : dxs) {
+    const auto c = parse_case_text(strip(dx, -0.1, 1, R"(
+      materials { name: "juice" density: 1 eos { sound_speed: 1 } diffusivity: 0.01 fixed_concentration: true }
+      materials { name: "f" density: 1 eos { sound_speed: 1 } diffusivity: 0.01 }
+      fluids { material: "juice" shape { box { lo { x: -0.1 y: 0 } hi { x: 0 y: 1 } } } initial_concentration: 1 }
+      fluids { material: "f" shape { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } initial_concentration: 0 }
+      walls { shape { box { lo { x: -1 y: 0 } hi { x: -0.1 y: 1 } } } }
+      walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } }
+      diffusion { }
+      time { end_time: )" + num(t_end) + R"( })"));
+    const std::string out = test::output_dir("diffusion_fixed");
+    const RunOutcome r = test::run(c, out);
+    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    errors.push_back(max_error(out, "concentration", exact));
+    test::ResultReader rr(out + "/result.h5");
+    const auto species = rr.series("diagnostics/species_mass");
+    const double taken = (species.back() - species.front()) / (8 * dx);
+    const double expected = 2 * std::sqrt(D * t_end / M_PI);
+    std::printf("dx = %.4g: species taken up %.5f per unit height, exact %.5f (%.2f%%)\n", dx,
+                taken, expected, 100 * (taken - expected) / expected);
+    uptake.push_back(std::abs(taken - expected) / expected);
+  }
+  report_order("Fixed-concentration region, D = 0.01, t = 0.25, max |C - erfc|", dxs, errors);
+  report_order("  its uptake, relative error", dxs, uptake);
+  // Measured: max error 6.1e-2 -> 3.0e-2, uptake -9.2% -> -4.7% (order 0.99 and 0.98).
+  EXPECT_LT(errors.back(), 0.035);
+  EXPECT_GT(order(dxs, errors), 0.8);
+  EXPECT_LT(uptake.back(), 0.055);
+  EXPECT_GT(order(dxs, uptake), 0.8);
 }
 
 // A cold solid block (T = 0) on a floor held at T = 0 under hot gas (T = 100; the powder
