@@ -446,6 +446,22 @@ class Validator {
       const std::string f = idx("phase_transitions", i);
       material_ref(pt.solid_material(), v1::SOLID, cat(f, "solid_material"), true);
       material_ref(pt.fluid_material(), v1::FLUID, cat(f, "fluid_material"), true);
+      // A transition's materials conduct (diffuse) like any region's, even before a particle
+      // of them exists (the melt of a scene that starts solid).
+      transport_properties(pt.solid_material(), cat(f, "solid_material"));
+      transport_properties(pt.fluid_material(), cat(f, "fluid_material"));
+      // A particle keeps its mass when it changes phase (Fuchs 2021 eq. 29; all the paper's
+      // examples give both phases one density): with two densities the melt would start
+      // compressed or stretched by their ratio, an EOS pressure jump at every transition.
+      const int ks = material_position(pt.solid_material()),
+                kf = material_position(pt.fluid_material());
+      if (ks >= 0 && kf >= 0 && c_.materials(ks).density() != c_.materials(kf).density())
+        error(cat(f, "fluid_material"),
+              "density " + num(c_.materials(kf).density()) + " of '" + pt.fluid_material() +
+                  "' differs from the solid's " + num(c_.materials(ks).density()) + " ('" +
+                  pt.solid_material() +
+                  "'): a particle keeps its mass when it changes phase, so both materials need "
+                  "the same density");
       if (pt.driver() == v1::DRIVER_UNSPECIFIED)
         error(cat(f, "driver"), "is required (TEMPERATURE or CONCENTRATION)");
       // A transition needs the field that drives it (issue: only the effects a scene calls for).

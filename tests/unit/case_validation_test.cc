@@ -273,6 +273,19 @@ phase_transitions { solid_material: "s" fluid_material: "water" driver: TEMPERAT
                     join_radius: 0.1 })");
   EXPECT_TRUE(has_error(errs, "phase_transitions[0].join_radius", "must be larger than dx"))
       << dump(errs);
+  // The melt of a scene that starts solid needs its thermal properties before any particle of
+  // it exists, and a particle keeps its mass when it changes phase: one density for both.
+  errs = errors_of(
+      R"(materials { name: "s" phase: SOLID density: 2 heat_capacity: 1 thermal_conductivity: 1 }
+materials { name: "melt" density: 3 eos { sound_speed: 1 } }
+thermal { }
+phase_transitions { solid_material: "s" fluid_material: "melt" driver: TEMPERATURE })");
+  EXPECT_TRUE(
+      has_error(errs, "materials[2].heat_capacity", "used by phase_transitions[0].fluid_material"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].fluid_material",
+                        "density 3 of 'melt' differs from the solid's 2"))
+      << dump(errs);
 }
 
 TEST(CaseValidation, RigidBodiesAndContact) {
