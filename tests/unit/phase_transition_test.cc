@@ -242,6 +242,76 @@ TEST(PhaseTransition, LiquidFreezesOntoABodyOrIntoANewOne) {
   EXPECT_EQ(f.mass(), m0);
 }
 
+TEST(PhaseTransition, LiquidFreezingBetweenTwoBodiesMergesThemWithTheirMomentum) {
+  // Two blocks moving and spinning differently with a liquid film between them. The film
+  // freezes onto both at once (it lies within the join radius of each), so the two bodies
+  // and the film become one body: its mass is theirs, and it takes the total linear momentum
+  // and the total angular momentum about its new centre (eq. 29 for a merge).
+  Fixture f(scene(R"(bodies { name: "left" material: "solid"
+                       shape { box { lo { x: -1.1 y: -0.5 } hi { x: -0.1 y: 0.5 } } } }
+                     bodies { name: "right" material: "solid"
+                       shape { box { lo { x: 0.1 y: -0.3 } hi { x: 0.7 y: 0.3 } } } }
+                     fluids { name: "film" material: "liquid"
+                       shape { box { lo { x: -0.1 y: -0.3 } hi { x: 0.1 y: 0.3 } } } })"),
+            Vec<2>(0, 0), 0.0);
+  auto& bs = f.bodies->bodies();
+  ASSERT_EQ(bs.size(), 2u);
+  bs[0].velocity = Vec<2>(0.4, 0.1);
+  bs[0].omega[0] = 0.5;
+  bs[1].velocity = Vec<2>(-0.2, 0.3);
+  bs[1].omega[0] = -1.5;
+  f.bodies->update_owned_velocities();
+  // Linear and angular momentum (about the origin, z) of bodies and fluid.
+  auto angular = [&] {
+    double L = 0;
+    for (const auto& b : f.bodies->bodies())
+      if (b.active())
+        L += b.inertia_body(0, 0) * b.omega[0] +
+             b.mass * (b.com[0] * b.velocity[1] - b.com[1] * b.velocity[0]);
+    for (std::size_t i = 0; i < f.s.owned(); ++i)
+      if (f.s.kind[i] == Kind::kFluid)
+        L += f.s.m[i] * (f.s.x[i][0] * f.s.v[i][1] - f.s.x[i][1] * f.s.v[i][0]);
+    return L;
+  };
+  const Vec<2> p0 = f.momentum();
+  const double L0 = angular(), m0 = f.mass();
+  const double mass_bodies = bs[0].mass + bs[1].mass;
+  const std::int64_t n_bodies = bs[0].particles + bs[1].particles;
+  std::int64_t n_film = 0;
+  for (std::size_t i = 0; i < f.s.owned(); ++i) {
+    (*f.T)[i] = 0;
+    n_film += f.s.kind[i] == Kind::kFluid;
+  }
+  ASSERT_GT(n_film, 0);
+  PhaseTransitions<2> pt({rule(50, 0, true)}, 8, 0.1);
+  const auto out = f.run(pt);
+  ASSERT_TRUE(out.error.empty()) << out.error;
+  EXPECT_EQ(out.solidified, n_film);
+  std::int64_t active = 0;
+  const RigidBody<2>* merged = nullptr;
+  for (const auto& b : f.bodies->bodies())
+    if (b.active()) {
+      ++active;
+      merged = &b;
+    }
+  ASSERT_EQ(active, 1);
+  EXPECT_EQ(merged->particles, n_bodies + n_film);
+  const auto k = static_cast<std::int32_t>(merged - f.bodies->bodies().data());
+  for (std::size_t i = 0; i < f.s.owned(); ++i) {
+    EXPECT_EQ(f.s.kind[i], Kind::kRigid) << "particle " << i;
+    EXPECT_EQ(f.bodies->body_index()[i], k) << "particle " << i;
+  }
+  EXPECT_GT(merged->mass, mass_bodies);  // the film's mass joined
+  EXPECT_EQ(f.mass(), m0);
+  EXPECT_NEAR((f.momentum() - p0).norm(), 0.0, 1e-12 * p0.norm());
+  EXPECT_NEAR(angular(), L0, 1e-12 * std::abs(L0));
+  // The merged body moves rigidly: every particle where the body puts it.
+  for (std::size_t i = 0; i < f.s.owned(); ++i)
+    EXPECT_NEAR(
+        (merged->com + merged->orientation.matrix() * f.bodies->offset()[i] - f.s.x[i]).norm(), 0,
+        1e-13);
+}
+
 TEST(PhaseTransition, HysteresisBandStopsFlicker) {
   Fixture f(scene(R"(bodies { name: "b" material: "solid"
                        shape { box { lo { x: -0.5 y: -0.5 } hi { x: 0.5 y: 0.5 } } } })"),
