@@ -83,6 +83,9 @@ class Simulation {
   }
   double imbalance() const { return imbalance_; }
   std::int64_t global_particles() const { return global_particles_; }
+  // Particles melted and solidified since the start (all ranks; 0 without phase transitions).
+  std::int64_t particles_melted() const { return phase_ ? phase_->melted_total() : 0; }
+  std::int64_t particles_solidified() const { return phase_ ? phase_->solidified_total() : 0; }
 
  private:
   class Timer {
