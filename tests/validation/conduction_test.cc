@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <stdexcept>
 
 #include "analysis/conduction.h"
 #include "case/load.h"
@@ -27,6 +28,16 @@ namespace {
 
 std::string num(double v) {
   return number_text(v, 10);
+}
+
+// Runs the case into test-output/<name>; a run that does not complete ends the test (gtest
+// reports the exception with the run's message).
+std::string completed_run(const v1::Case& c, const std::string& name) {
+  const std::string out = test::output_dir(name);
+  const RunOutcome r = test::run(c, out);
+  if (r.status != RunStatus::kCompleted)
+    throw std::runtime_error(name + ": the run did not complete: " + r.message);
+  return out;
 }
 
 // Max |T - exact| over fluid and rigid particles of the last snapshot.
@@ -93,9 +104,7 @@ TEST(Conduction, SemiInfiniteSlabErfc) {
       walls { name: "far" shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } }
       thermal { initial_temperature: 0 }
       time { end_time: )" + num(t_end) + R"( })"));
-    const std::string out = test::output_dir("conduction_slab");
-    const RunOutcome r = test::run(c, out);
-    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    const std::string out = completed_run(c, "conduction_slab");
     // The erfc profile as a convergence study measures it (analysis/conduction.h).
     v1::ConductionReference ref;
     ref.set_boundary(0);
@@ -132,9 +141,7 @@ TEST(Conduction, ContactTemperatureOfTwoMaterials) {
       walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } }
       thermal { }
       time { end_time: )" + num(t_end) + R"( })"));
-    const std::string out = test::output_dir("conduction_contact");
-    const RunOutcome r = test::run(c, out);
-    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    const std::string out = completed_run(c, "conduction_contact");
     errors.push_back(max_error(out, "temperature", exact, -0.5, 0.5));
   }
   report_order("Two blocks, effusivity 1 | 2, contact temperature 1/3, t = 0.005, max |T - exact|",
@@ -160,9 +167,7 @@ TEST(Conduction, SteadyLayeredSlab) {
       walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } temperature { value { constant: 0 } } }
       thermal { initial_temperature: 0.5 }
       time { end_time: 1.2 })"));
-    const std::string out = test::output_dir("conduction_layers");
-    const RunOutcome r = test::run(c, out);
-    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    const std::string out = completed_run(c, "conduction_layers");
     errors.push_back(max_error(out, "temperature", exact));
   }
   report_order("Layered slab k = 1 | 3, steady, max |T - exact|", dxs, errors);
@@ -189,9 +194,7 @@ TEST(Diffusion, TopHatSpreads) {
       walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } }
       diffusion { }
       time { end_time: )" + num(t_end) + R"( })"));
-    const std::string out = test::output_dir("diffusion_tophat");
-    const RunOutcome r = test::run(c, out);
-    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    const std::string out = completed_run(c, "diffusion_tophat");
     errors.push_back(max_error(out, "concentration", exact));
   }
   report_order("Top hat of concentration, D = 0.01, t = 0.25, max |C - exact|", dxs, errors);
@@ -213,9 +216,7 @@ TEST(Conduction, VolumetricSourceBetweenColdWallsGivesTheSteadyParabola) {
       walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } temperature { value { constant: 0 } } }
       thermal { initial_temperature: 0 volumetric_heat_source: 8 }
       time { end_time: 2.4 })"));
-    const std::string out = test::output_dir("conduction_source");
-    const RunOutcome r = test::run(c, out);
-    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    const std::string out = completed_run(c, "conduction_source");
     errors.push_back(max_error(out, "temperature", exact));
   }
   report_order("Uniform source q = 8 between walls at 0, steady, max |T - 4x(1-x)|", dxs, errors);
@@ -239,9 +240,7 @@ TEST(Conduction, VolumetricSourceHeatsAFluidAndABodyAtQOverRhoCp) {
     thermal { initial_temperature: 0 volumetric_heat_source: )" +
                                            num(q) + R"( }
     time { end_time: )" + num(t_end) + R"( })"));
-  const std::string out = test::output_dir("conduction_source_only");
-  const RunOutcome r = test::run(c, out);
-  ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+  const std::string out = completed_run(c, "conduction_source_only");
   test::ResultReader rr(out + "/result.h5");
   const int last = rr.snapshot_count() - 1;
   const test::Snapshot s = rr.snapshot(last);
@@ -288,9 +287,7 @@ TEST(Diffusion, AFixedConcentrationRegionActsAsADirichletSource) {
       walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } }
       diffusion { }
       time { end_time: )" + num(t_end) + R"( })"));
-    const std::string out = test::output_dir("diffusion_fixed");
-    const RunOutcome r = test::run(c, out);
-    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    const std::string out = completed_run(c, "diffusion_fixed");
     errors.push_back(max_error(out, "concentration", exact));
     test::ResultReader rr(out + "/result.h5");
     const auto species = rr.series("diagnostics/species_mass");
@@ -333,9 +330,7 @@ TEST(Conduction, DirichletWallBesideAColdBodyStaysWithinTheBounds) {
     fluid_model { density: SUMMATION }
     time { end_time: 0.05 }
     output { interval: 0.05 series_interval: 0.0005 })");
-  const std::string out = test::output_dir("conduction_cold_block");
-  const RunOutcome r = test::run(c, out);
-  ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+  const std::string out = completed_run(c, "conduction_cold_block");
   test::ResultReader rr(out + "/result.h5");
   const auto tmin = rr.series("diagnostics/temperature_min");
   const auto tmax = rr.series("diagnostics/temperature_max");
