@@ -50,7 +50,7 @@ std::string BodyRegrouping<D>::run(ParticleStore<D>& s, RigidBodies<D>& bodies,
     if (s.kind[i] != Kind::kRigid) continue;
     const std::int32_t k = body[i];
     if (k >= 0 && !involved[static_cast<std::size_t>(k)]) continue;
-    Record rec{s.id[i], k, s.m[i], s.x[i], s.v[i], k >= 0 ? fluid_force[i] : Vec<D>::Zero()};
+    Record rec{s.id[i], k, s.m[i], s.x[i], s.v[i], fluid_force[i]};
     mine.append(reinterpret_cast<const char*>(&rec), sizeof rec);
   }
   const std::string all = comm.allgather(mine);

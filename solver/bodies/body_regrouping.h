@@ -22,8 +22,9 @@
 // Forces: a rebuilt body gets the sum of its own particles' fluid forces (eq. 19) and their
 // moments about its new centre (eqs. 24-26), not its parent's: a piece broken off a body
 // would otherwise be kicked with the whole body's force over its own small mass. A new
-// particle brings no fluid force (its force as a fluid particle mixes in rigid and wall
-// neighbours), one step's half kick of one particle's force. The contact force of a rebuilt
+// particle brings the force the caller put in its fluid_force entry (PhaseTransitions: its
+// force as a fluid particle), so the next half kick hands out what the last one did and
+// momentum is conserved. The contact force of a rebuilt
 // body is zero: the simulation evaluates contact again with the new bodies
 // (SpringDashpotContact::refresh) after searching neighbours again. Its mean contact force
 // over the last step (what the fluid's wall condition sees, RigidBody) is each parent's in

@@ -8,7 +8,7 @@ template <int D>
 typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
     ParticleStore<D>& s, const NeighborList<D>& nl, RigidBodies<D>& bodies,
     const Column<double>* temperature, const Column<double>* concentration,
-    Column<Vec<D>>* transport, const Comm& comm) {
+    Column<Vec<D>>* transport, const Vec<D>& fluid_body_force, const Comm& comm) {
   Outcome out;
   auto& bs = bodies.bodies();
   auto& body = bodies.body_index();
@@ -49,13 +49,21 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
   melted_total_ += out.melted;
   solidified_total_ += out.solidified;
 
-  // 2. Apply the change of phase to the owned particles.
-  auto& accel = bodies.particle_acceleration();
+  // 2. Apply the change of phase to the owned particles. Forces for the next half kick: the
+  //    body received the sum of its particles' fluid forces (eq. 19) in this step's last
+  //    half kick, and the next one must hand out the same sum, split anew, or momentum is
+  //    lost. A melted particle takes its own share f_r (plus the fluid's body force), not
+  //    the body's acceleration at its place (eq. 36), which includes the pull of the rest of
+  //    the body that keeps it on the rigid motion: with that, a spinning disk melting in a
+  //    periodic box lost 0.3% of the total momentum in 300 steps. A frozen particle brings its
+  //    force as a fluid particle, m (a - b), into its body's sum; its share from rigid
+  //    neighbours is balanced in their bodies' sums.
+  auto& fluid_force = bodies.fluid_force();
   for (const auto& [i, r] : melt) {
     s.kind[i] = Kind::kFluid;
     s.material[i] = r->fluid;
     body[i] = -1;
-    s.a[i] = accel[i];  // the body's acceleration here (eq. 36) for the next half kick
+    s.a[i] = fluid_force[i] / s.m[i] + fluid_body_force;
     s.rho[i] = r->fluid_rho0;
     if (transport) (*transport)[i] = s.v[i];
   }
@@ -63,6 +71,7 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
     s.kind[i] = Kind::kRigid;
     s.material[i] = r->solid;
     body[i] = -1;  // assigned by the regrouping
+    fluid_force[i] = s.m[i] * (s.a[i] - fluid_body_force);
   }
 
   // 3. Rebuild the bodies that lost or may gain particles.

@@ -7,7 +7,8 @@
 //  - a rigid particle of the solid material whose temperature (concentration) exceeds
 //    T_t + hysteresis/2 leaves its body and becomes a fluid particle of the fluid material.
 //    It keeps mass, position, temperature and the velocity the body gave it (eq. 36), its
-//    acceleration for the next half kick is the body's at its place; its density starts at
+//    acceleration for the next half kick is its own share of the fluid force on the body
+//    (eq. 19) plus the fluid's body force, so momentum is conserved; its density starts at
 //    the fluid's reference density (the wall condition gave it the density of the
 //    neighbouring fluid, which may be another phase) and its pressure is the one the wall
 //    condition gave it, so the forces on its neighbours do not jump;
@@ -53,10 +54,11 @@ class PhaseTransitions {
   };
 
   // Collective. `temperature`/`concentration` may be null when no rule uses them;
-  // `transport` is the transport velocity column (null without TVF).
+  // `transport` is the transport velocity column (null without TVF); `fluid_body_force` the
+  // body force per unit mass on the fluid (gravity) at the end of the step.
   Outcome run(ParticleStore<D>& s, const NeighborList<D>& nl, RigidBodies<D>& bodies,
               const Column<double>* temperature, const Column<double>* concentration,
-              Column<Vec<D>>* transport, const Comm& comm);
+              Column<Vec<D>>* transport, const Vec<D>& fluid_body_force, const Comm& comm);
 
   std::int64_t melted_total() const { return melted_total_; }
   std::int64_t solidified_total() const { return solidified_total_; }

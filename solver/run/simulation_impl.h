@@ -326,7 +326,8 @@ std::string Simulation<D, K>::apply_phase_transitions() {
   {
     Timer tm(timer(PhaseTransitions<D>::kName));
     out = phase_->run(s_, nl_, *bodies_, heat_ ? &heat_->values() : nullptr,
-                      concentration_ ? &concentration_->values() : nullptr, transport_, comm_);
+                      concentration_ ? &concentration_->values() : nullptr, transport_,
+                      fluid_body_force(t_), comm_);
   }
   if (!out.error.empty()) {
     char buf[120];

@@ -46,7 +46,7 @@ struct Fixture {
     nl.build(s, grid, halo.ghost_box(), 0.3, nullptr, true);
   }
   PhaseTransitions<2>::Outcome run(PhaseTransitions<2>& pt) {
-    return pt.run(s, nl, *bodies, T, nullptr, nullptr, comm);
+    return pt.run(s, nl, *bodies, T, nullptr, nullptr, Vec<2>::Zero(), comm);
   }
   Vec<2> momentum() const {  // bodies plus fluid
     Vec<2> p = Vec<2>::Zero();
