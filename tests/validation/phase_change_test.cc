@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -140,9 +141,9 @@ TEST(PhaseChange, ABodyThatMeltsLeavesNoContactBehind) {
 
 // A spinning disk moving through a periodic box (no walls, no gravity: nothing outside acts
 // on fluid and bodies together, so their total momentum stays the disk's initial M U) of
-// water, with `regions` for the fluid and the disk's temperature; the disk's melt is the
-// fluid "melt" (melts above 50.5, freezes below 49.5).
-v1::Case moving_disk_in_periodic_water(const std::string& regions, double disk_temperature) {
+// water, with `regions` for the fluid; the disk (at T = 50) melts into the fluid "melt" above
+// 50.5, which freezes below 49.5.
+v1::Case moving_disk_in_periodic_water(const std::string& regions) {
   return parse_case_text(R"(dimension: 2 dx: 0.02
     domain { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } periodic_x: true periodic_y: true
     materials { name: "water" density: 1 eos { sound_speed: 10 } kinematic_viscosity: 0.01
@@ -150,8 +151,7 @@ v1::Case moving_disk_in_periodic_water(const std::string& regions, double disk_t
     materials { name: "melt" density: 1 eos { sound_speed: 10 } kinematic_viscosity: 0.01
                 heat_capacity: 1 thermal_conductivity: 0.1 }
     materials { name: "solid" phase: SOLID density: 1 heat_capacity: 1 thermal_conductivity: 0.1 }
-    bodies { name: "disk" material: "solid" initial_temperature: )" +
-                         std::to_string(disk_temperature) + R"(
+    bodies { name: "disk" material: "solid" initial_temperature: 50
              initial_velocity { x: 1 y: 0.5 } initial_angular_velocity { z: 2 }
              shape { ball { center { x: 0.5 y: 0.5 } radius: 0.2 } } }
     thermal { }
@@ -169,7 +169,13 @@ struct Invariants {
   double momentum_change = 0, mass_change = 0, body_mass_start = 0, body_mass_end = 0;
   double melted = 0, solidified = 0;
 };
-Invariants invariants_of(const std::string& out) {
+// Runs the case into test-output/<name> and measures its invariants; a run that does not
+// complete ends the test (gtest reports the exception with the run's message).
+Invariants run_and_measure(const v1::Case& c, const std::string& name) {
+  const std::string out = test::output_dir(name);
+  const RunOutcome r = test::run(c, out);
+  if (r.status != RunStatus::kCompleted)
+    throw std::runtime_error(name + ": the run did not complete: " + r.message);
   test::ResultReader rr(out + "/result.h5");
   const auto fluid_p = rr.series("diagnostics/momentum"), fluid_m = rr.series("diagnostics/mass");
   const auto body_m = rr.series("bodies/mass"), body_u = rr.series("bodies/velocity");
@@ -208,12 +214,8 @@ Invariants invariants_of(const std::string& out) {
 TEST(PhaseChange, AHalfMeltedBodyKeepsTheMomentumOfItsRemainingPart) {
   const auto c = moving_disk_in_periodic_water(R"(
     fluids { material: "water" initial_temperature: 0 shape { box { lo { x: 0 y: 0 } hi { x: 0.5 y: 1 } } } }
-    fluids { material: "water" initial_temperature: 100 shape { box { lo { x: 0.5 y: 0 } hi { x: 1 y: 1 } } } })",
-                                               50);
-  const std::string out = test::output_dir("phase_half_melted_momentum");
-  const RunOutcome r = test::run(c, out);
-  ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
-  const Invariants inv = invariants_of(out);
+    fluids { material: "water" initial_temperature: 100 shape { box { lo { x: 0.5 y: 0 } hi { x: 1 y: 1 } } } })");
+  const Invariants inv = run_and_measure(c, "phase_half_melted_momentum");
   std::printf(
       "half-melted disk: %g particles melted in 300 steps, body mass %.4f -> %.4f; "
       "largest relative change of the total momentum %.2e, of the mass %.2e\n",
@@ -233,12 +235,8 @@ TEST(PhaseChange, LiquidFreezingOntoAMovingBodyKeepsTheTotalMomentum) {
   const auto c = moving_disk_in_periodic_water(R"(
     fluids { material: "melt" initial_temperature: 40
              shape { ball { center { x: 0.5 y: 0.5 } radius: 0.24 } } }
-    fluids { material: "water" initial_temperature: 50 shape { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } })",
-                                               50);
-  const std::string out = test::output_dir("phase_frozen_on_momentum");
-  const RunOutcome r = test::run(c, out);
-  ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
-  const Invariants inv = invariants_of(out);
+    fluids { material: "water" initial_temperature: 50 shape { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } })");
+  const Invariants inv = run_and_measure(c, "phase_frozen_on_momentum");
   std::printf(
       "disk with a frozen ring: %g particles solidified, body mass %.4f -> %.4f; "
       "largest relative change of the total momentum %.2e, of the mass %.2e\n",
