@@ -72,6 +72,9 @@ output { series_interval: 1e9 })";
   return t;
 }
 
+// Steps run before the timed ones (first neighbour searches, allocations).
+constexpr int kWarmUpSteps = 20;
+
 void run(const std::string& label, const sph::v1::Case& c, int steps, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -83,7 +86,7 @@ void run(const std::string& label, const sph::v1::Case& c, int steps, MPI_Comm c
   o.quiet = true;
   sph::Simulation<2, sph::QuinticSpline<2>> sim(c, sph::Comm(comm), o);
   sim.start();
-  for (int k = 0; k < 20; ++k) sim.step();
+  for (int k = 0; k < kWarmUpSteps; ++k) sim.step();
   const auto before = sim.unit_seconds();
   const double t0 = MPI_Wtime();
   for (int k = 0; k < steps; ++k) sim.step();
@@ -99,7 +102,7 @@ void run(const std::string& label, const sph::v1::Case& c, int steps, MPI_Comm c
   if (sim.particles_melted() + sim.particles_solidified() > 0)
     std::printf(" (%lld particles melted, %lld solidified in all %d steps)",
                 static_cast<long long>(sim.particles_melted()),
-                static_cast<long long>(sim.particles_solidified()), steps + 20);
+                static_cast<long long>(sim.particles_solidified()), kWarmUpSteps + steps);
   std::printf("\n%-22s %8.0f bytes/particle ", "", [&] {
     double b = 0;
     for (const auto& [u, x] : sim.memory_by_owner()) b += static_cast<double>(x);

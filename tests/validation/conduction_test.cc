@@ -73,6 +73,20 @@ std::string strip(double dx, double x0, double x1, const std::string& body) {
          body;
 }
 
+// Max |field - exact| over [xmin, xmax] of the strip [x0, x1] with `body`, run at each dx of
+// `dxs` into test-output/<name>.
+std::vector<double> errors_over(const std::vector<double>& dxs, double x0, double x1,
+                                const std::string& body, const std::string& name,
+                                const std::string& field,
+                                const std::function<double(double, double)>& exact,
+                                double xmin = -1e300, double xmax = 1e300) {
+  std::vector<double> errors;
+  for (double dx : dxs)
+    errors.push_back(max_error(completed_run(parse_case_text(strip(dx, x0, x1, body)), name), field,
+                               exact, xmin, xmax));
+  return errors;
+}
+
 void report_order(const char* what, const std::vector<double>& dxs,
                   const std::vector<double>& errors) {
   std::printf("%s:", what);
@@ -130,9 +144,8 @@ TEST(Conduction, ContactTemperatureOfTwoMaterials) {
     return x < 0 ? Tc + (1 - Tc) * std::erf(-x / (2 * std::sqrt(a1 * t)))
                  : Tc * std::erfc(x / (2 * std::sqrt(a2 * t)));
   };
-  std::vector<double> dxs = {0.02, 0.01}, errors;
-  for (double dx : dxs) {
-    const auto c = parse_case_text(strip(dx, -1, 1, R"(
+  const std::vector<double> dxs = {0.02, 0.01};
+  const std::vector<double> errors = errors_over(dxs, -1, 1, R"(
       materials { name: "f" density: 1 eos { sound_speed: 10 } heat_capacity: 1 thermal_conductivity: 1 }
       materials { name: "s" phase: SOLID density: 1 heat_capacity: 1 thermal_conductivity: 4 }
       fluids { material: "f" shape { box { lo { x: -1 y: 0 } hi { x: 0 y: 1 } } } initial_temperature: 1 }
@@ -140,10 +153,9 @@ TEST(Conduction, ContactTemperatureOfTwoMaterials) {
       walls { shape { box { lo { x: -2 y: 0 } hi { x: -1 y: 1 } } } }
       walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } }
       thermal { }
-      time { end_time: )" + num(t_end) + R"( })"));
-    const std::string out = completed_run(c, "conduction_contact");
-    errors.push_back(max_error(out, "temperature", exact, -0.5, 0.5));
-  }
+      time { end_time: )" + num(t_end) + R"( })",
+                                                 "conduction_contact", "temperature", exact, -0.5,
+                                                 0.5);
   report_order("Two blocks, effusivity 1 | 2, contact temperature 1/3, t = 0.005, max |T - exact|",
                dxs, errors);
   EXPECT_LT(errors.back(), 2e-3);
@@ -156,9 +168,8 @@ TEST(Conduction, SteadyLayeredSlab) {
   // Walls at 1 (x < 0) and 0 (x > 1); k = 1 on [0, 0.5], k = 3 on [0.5, 1]: flux 1.5, the
   // interface at 0.25. (c_p = 3 in the second layer keeps both diffusivities at 1.)
   auto exact = [](double x, double) { return x < 0.5 ? 1 - 1.5 * x : 0.25 - 0.5 * (x - 0.5); };
-  std::vector<double> dxs = {0.05, 0.025}, errors;
-  for (double dx : dxs) {
-    const auto c = parse_case_text(strip(dx, 0, 1, R"(
+  const std::vector<double> dxs = {0.05, 0.025};
+  const std::vector<double> errors = errors_over(dxs, 0, 1, R"(
       materials { name: "a" density: 1 eos { sound_speed: 1 } heat_capacity: 1 thermal_conductivity: 1 }
       materials { name: "b" density: 1 eos { sound_speed: 1 } heat_capacity: 3 thermal_conductivity: 3 }
       fluids { material: "a" shape { box { lo { x: 0 y: 0 } hi { x: 0.5 y: 1 } } } }
@@ -166,10 +177,8 @@ TEST(Conduction, SteadyLayeredSlab) {
       walls { shape { box { lo { x: -1 y: 0 } hi { x: 0 y: 1 } } } temperature { value { constant: 1 } } }
       walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } temperature { value { constant: 0 } } }
       thermal { initial_temperature: 0.5 }
-      time { end_time: 1.2 })"));
-    const std::string out = completed_run(c, "conduction_layers");
-    errors.push_back(max_error(out, "temperature", exact));
-  }
+      time { end_time: 1.2 })",
+                                                 "conduction_layers", "temperature", exact);
   report_order("Layered slab k = 1 | 3, steady, max |T - exact|", dxs, errors);
   EXPECT_LT(errors.back(), 1e-3);
   // Measured 1.02: first order, from the kink of the steady profile at the layer interface
@@ -184,19 +193,16 @@ TEST(Diffusion, TopHatSpreads) {
     const double s = 2 * std::sqrt(D * t);
     return 0.5 * (std::erf((x - 0.45) / s) - std::erf((x - 0.55) / s));
   };
-  std::vector<double> dxs = {0.01, 0.005}, errors;
-  for (double dx : dxs) {
-    const auto c = parse_case_text(strip(dx, 0, 1, R"(
+  const std::vector<double> dxs = {0.01, 0.005};
+  const std::vector<double> errors = errors_over(dxs, 0, 1, R"(
       materials { name: "f" density: 1 eos { sound_speed: 1 } diffusivity: 0.01 }
       fluids { material: "f" shape { box { lo { x: 0.45 y: 0 } hi { x: 0.55 y: 1 } } } initial_concentration: 1 }
       fluids { material: "f" shape { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } initial_concentration: 0 }
       walls { shape { box { lo { x: -1 y: 0 } hi { x: 0 y: 1 } } } }
       walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } }
       diffusion { }
-      time { end_time: )" + num(t_end) + R"( })"));
-    const std::string out = completed_run(c, "diffusion_tophat");
-    errors.push_back(max_error(out, "concentration", exact));
-  }
+      time { end_time: )" + num(t_end) + R"( })",
+                                                 "diffusion_tophat", "concentration", exact);
   report_order("Top hat of concentration, D = 0.01, t = 0.25, max |C - exact|", dxs, errors);
   EXPECT_LT(errors.back(), 5e-4);
   EXPECT_GT(order(dxs, errors), 2.0);  // measured 2.84
@@ -207,18 +213,15 @@ TEST(Conduction, VolumetricSourceBetweenColdWallsGivesTheSteadyParabola) {
   // middle. rho c_p = 2 (not 1), which the steady state does not see but the time to reach it
   // does (t = 2.4 is about 12 diffusion times of the slowest mode).
   auto exact = [](double x, double) { return 4 * x * (1 - x); };
-  std::vector<double> dxs = {0.05, 0.025}, errors;
-  for (double dx : dxs) {
-    const auto c = parse_case_text(strip(dx, 0, 1, R"(
+  const std::vector<double> dxs = {0.05, 0.025};
+  const std::vector<double> errors = errors_over(dxs, 0, 1, R"(
       materials { name: "f" density: 2 eos { sound_speed: 1 } heat_capacity: 1 thermal_conductivity: 1 }
       fluids { material: "f" shape { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } }
       walls { shape { box { lo { x: -1 y: 0 } hi { x: 0 y: 1 } } } temperature { value { constant: 0 } } }
       walls { shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } temperature { value { constant: 0 } } }
       thermal { initial_temperature: 0 volumetric_heat_source: 8 }
-      time { end_time: 2.4 })"));
-    const std::string out = completed_run(c, "conduction_source");
-    errors.push_back(max_error(out, "temperature", exact));
-  }
+      time { end_time: 2.4 })",
+                                                 "conduction_source", "temperature", exact);
   report_order("Uniform source q = 8 between walls at 0, steady, max |T - 4x(1-x)|", dxs, errors);
   EXPECT_LT(errors.back(), 2e-3);
   EXPECT_GT(order(dxs, errors), 1.5);
