@@ -25,23 +25,29 @@ Point3 MotionPath::center(double t) const {
   return center0_ + translation(t);
 }
 
+MotionPath::Pose MotionPath::pose(double t) const {
+  Pose p;
+  p.rotation_ = Eigen::AngleAxisd(omega_.integral(t), axis_).toRotationMatrix();
+  p.center_ = center(t);
+  p.center0_ = center0_;
+  p.axis_ = axis_;
+  p.velocity_ = translation_velocity(t);
+  p.acceleration_ = translation_acceleration(t);
+  p.omega_ = omega_.value(t);
+  p.alpha_ = omega_.derivative(t);
+  return p;
+}
+
 Point3 MotionPath::position(const Point3& x0, double t) const {
-  const double angle = omega_.integral(t);
-  const Eigen::AngleAxisd rot(angle, axis_);
-  return center(t) + rot * (x0 - center0_);
+  return pose(t).position(x0);
 }
 
 Point3 MotionPath::velocity(const Point3& x0, double t) const {
-  const Point3 r = position(x0, t) - center(t);
-  return translation_velocity(t) + omega_.value(t) * axis_.cross(r);
+  return pose(t).velocity(x0);
 }
 
 Point3 MotionPath::acceleration(const Point3& x0, double t) const {
-  const Point3 r = position(x0, t) - center(t);
-  const double w = omega_.value(t);
-  const Point3 wvec = w * axis_;
-  return translation_acceleration(t) + omega_.derivative(t) * axis_.cross(r) +
-         wvec.cross(wvec.cross(r));
+  return pose(t).acceleration(x0);
 }
 
 }  // namespace sph

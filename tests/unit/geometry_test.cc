@@ -138,5 +138,27 @@ TEST(Motion, RotationAboutMovingCentre) {
   EXPECT_NEAR(a.y(), -4 * std::sin(2 * t), 1e-13);
 }
 
+// A pose evaluated once serves every wall particle of a step: its positions must be those of
+// the formula the walls moved by before, the rotation applied by Eigen's angle-axis product
+// (velocity and acceleration are checked against the analytic motion above).
+TEST(Motion, PoseOfOneTimeMatchesThePointwiseFormulaToTheBit) {
+  v1::Motion m;
+  google::protobuf::TextFormat::ParseFromString(
+      "velocity_x { sine { amplitude: 0.3 angular_frequency: 1.5 phase: 0.2 } } "
+      "velocity_y { constant: -0.1 } angular_velocity { sine { amplitude: 2 angular_frequency: 3 "
+      "} } center { x: 0.4 y: -0.2 z: 0.1 } axis { x: 0.3 y: -1 z: 2 }",
+      &m);
+  const MotionPath path(m, 3);
+  const Point3 c0 = path.center(0.0);
+  for (double t : {0.0, 0.37, 2.9}) {
+    const MotionPath::Pose pose = path.pose(t);
+    for (const Point3& x0 : {Point3(2, 0, 0), Point3(-0.3, 0.7, 1.1), Point3(1e-3, 5, -2)}) {
+      const Point3 expect =
+          path.center(t) + Eigen::AngleAxisd(path.angle(t), path.axis()) * (x0 - c0);
+      EXPECT_EQ(pose.position(x0), expect) << t;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sph
