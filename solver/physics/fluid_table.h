@@ -24,6 +24,18 @@ struct FluidConstants {
     const double base = std::max((p - chi) * inv_p0 + 1.0, 1e-3);
     return gamma == 1.0 ? rho0 * base : rho0 * std::pow(base, inv_gamma);
   }
+  // The elastic energy a unit of mass stores at density rho, zero at rho0: the work of the
+  // pressure compressing it, e = int_{rho0}^{rho} p / rho'^2 drho' (the internal energy whose
+  // exchange with the kinetic energy makes an SPH fluid conserve its total energy). For
+  // delta = rho / rho0 - 1 it is c^2 delta^2 / 2 + chi delta / rho0 to leading order; the
+  // chi term sums to chi (V0 - V), the work of the background pressure on the fluid's volume.
+  double elastic_energy(double rho) const {
+    const double delta = rho * inv_rho0 - 1.0, shrink = delta / (1.0 + delta);  // 1 - rho0/rho
+    const double stiff =
+        gamma == 1.0 ? std::log1p(delta) - shrink
+                     : std::expm1((gamma - 1.0) * std::log1p(delta)) / (gamma - 1.0) - shrink;
+    return inv_rho0 * (p0 * stiff + chi * shrink);
+  }
 
  private:
   double power(double r) const {

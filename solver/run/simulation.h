@@ -29,6 +29,7 @@
 #include "solver/core/pair_kernel.h"
 #include "solver/core/particle_store.h"
 #include "solver/diagnostics/conservation.h"
+#include "solver/diagnostics/phase_mixing.h"
 #include "solver/diagnostics/probes.h"
 #include "solver/diagnostics/solid_fraction.h"
 #include "solver/diagnostics/stability_guards.h"
@@ -216,6 +217,7 @@ class Simulation {
   bool last_step_had_snapshot_ = false;
   double comm_seconds_ = 0;
   double solid_fraction_ = 0;  // largest fluid solid fraction after the last step
+  bool phases_ = false;        // two or more fluid materials: the interface is watched
   double min_contact_distance_ = std::numeric_limits<double>::infinity();
 };
 

@@ -1,6 +1,7 @@
 #pragma once
 // Implementation of Simulation<D, K> (included by simulation.h; instantiated in
 // simulation_2d.cc and simulation_3d.cc).
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -186,8 +187,9 @@ void Simulation<D, K>::build_units() {
     units_.push_back(Probes<D, K>::kName);
   }
   // Series in the result file.
-  for (const char* n : {"time", "step", "dt", "mass", "kinetic_energy", "potential_energy",
-                        "max_density_deviation", "max_speed", "imbalance", "fluid_particles"})
+  for (const char* n :
+       {"time", "step", "dt", "mass", "kinetic_energy", "potential_energy", "elastic_energy",
+        "max_density_deviation", "max_speed", "imbalance", "fluid_particles"})
     result_.add_series(std::string("diagnostics/") + n);
   result_.add_series("diagnostics/momentum", {static_cast<std::uint64_t>(D)});
   result_.add_series("diagnostics/max_density_deviation_at", {static_cast<std::uint64_t>(D)});
@@ -196,6 +198,11 @@ void Simulation<D, K>::build_units() {
   result_.add_series("diagnostics/fluid_max", {static_cast<std::uint64_t>(D)});
   if (walls_) result_.add_series("diagnostics/max_solid_fraction");
   if (contact_) result_.add_series("diagnostics/min_contact_distance");
+  phases_ = std::count_if(fluids_.begin(), fluids_.end(),
+                          [](const FluidConstants& fl) { return fl.fluid; }) > 1;
+  if (phases_)
+    for (const char* n : {"interface_particles", "stray_phase_particles"})
+      result_.add_series(std::string("diagnostics/") + n);
   if (bodies_) {
     body_slots_ = phase_ ? phase_->max_bodies() : static_cast<std::size_t>(c_.bodies_size());
     const auto nb = static_cast<std::uint64_t>(body_slots_);
@@ -823,7 +830,7 @@ void Simulation<D, K>::sample_series() {
   const Vec<D> g = fluid_gravity_ && c_.has_gravity()
                        ? detail::to_vec<D>(c_.gravity().acceleration())
                        : Vec<D>::Zero();
-  const ConservationSample<D> cs = conservation(s_, g, comm_);
+  const ConservationSample<D> cs = conservation(s_, fluids_, g, comm_);
   // One reduction for the extremes: [dev, vmax, -min_0.., max_0..].
   std::vector<double> ext(2 + 2 * D, -std::numeric_limits<double>::infinity());
   ext[0] = ext[1] = 0.0;
@@ -871,6 +878,7 @@ void Simulation<D, K>::sample_series() {
   put("mass", cs.mass);
   put("kinetic_energy", cs.kinetic);
   put("potential_energy", cs.potential);
+  put("elastic_energy", cs.elastic);
   put("max_density_deviation", dev);
   result_.append_series("diagnostics/max_density_deviation_at", worst_at);
   put("max_speed", vmax);
@@ -878,6 +886,13 @@ void Simulation<D, K>::sample_series() {
   put("fluid_particles", cs.fluid_particles);
   if (walls_) put("max_solid_fraction", solid_fraction_);
   if (contact_) put("min_contact_distance", min_contact_distance_);
+  if (phases_) {
+    const PhaseMixingScan mix = phase_mixing<D>(s_, nl_, pk_, kernel_.W(0.0), wall_volume_);
+    put("interface_particles",
+        static_cast<double>(comm_.sum(static_cast<std::int64_t>(mix.interface))));
+    put("stray_phase_particles",
+        static_cast<double>(comm_.sum(static_cast<std::int64_t>(mix.stray))));
+  }
   result_.append_series("diagnostics/momentum",
                         std::vector<double>(cs.momentum.data(), cs.momentum.data() + D));
   if (bodies_) sample_bodies();
@@ -1316,7 +1331,7 @@ RunOutcome Simulation<D, K>::run() {
     }
     if (steady > 0 && step_ % 20 == 0) {
       const Vec<D> g = Vec<D>::Zero();
-      const ConservationSample<D> cs = conservation(s_, g, comm_);
+      const ConservationSample<D> cs = conservation(s_, fluids_, g, comm_);
       if (cs.mass > 0 && cs.kinetic / cs.mass < steady) {
         if (!last_step_had_snapshot_) write_snapshot();
         message = "steady state reached (stop.steady_kinetic_energy)";

@@ -60,22 +60,27 @@ def plot_case(case, png):
     f = h5py.File(path, "r")
     d = f["series/diagnostics"]
     t = d["time"][:]
-    fig, ax = plt.subplots(1, 3, figsize=(13, 3.2))
+    phases = "stray_phase_particles" in d
+    fig, ax = plt.subplots(1, 4 if phases else 3, figsize=(17 if phases else 13, 3.2))
     ax[0].plot(t, d["max_density_deviation"][:])
     ax[0].set_title("max |rho/rho0 - 1|")
     energy = None
-    for key in ("kinetic_energy", "potential_energy"):
+    for key in ("kinetic_energy", "potential_energy", "elastic_energy"):
         if key in d:
             energy = d[key][:] if energy is None else energy + d[key][:]
     if energy is not None:
         ax[1].plot(t, energy)
-        ax[1].set_title("fluid kinetic + potential energy")
+        ax[1].set_title("fluid kinetic + potential + elastic energy")
     if "mass" in d:
         m = d["mass"][:]
         if "bodies" in f["series"] and "mass" in f["series/bodies"]:
             m = m + np.nansum(f["series/bodies/mass"][:], axis=1)
         ax[2].plot(t, m / m[0] - 1)
         ax[2].set_title("mass drift (fluid + bodies)")
+    if phases:
+        # solver/diagnostics/phase_mixing.h
+        ax[3].plot(t, d["stray_phase_particles"][:] / np.maximum(d["interface_particles"][:], 1))
+        ax[3].set_title("stray / interface particles")
     for a in ax:
         a.set_xlabel("t")
     fig.suptitle(case)
@@ -110,7 +115,9 @@ out.append("Written by `tests/stability/run.sh%s` (runs the suite, then `tests/s
               " (the case files as shipped; the reduced CI size: [stability.md](stability.md))"))
 out.append("Each hard case runs long and asserts: every diagnostic finite, the run completes, density "
            "deviation bounded, no fluid inside walls or bodies (solid-fraction guard), no spurious growth "
-           "of mechanical energy, mass exact (and momentum where it must hold). Each guard has a run that "
+           "of mechanical energy, mass exact (and momentum where it must hold), and between fluid phases a "
+           "sharp interface (stray particles, those with more of the other phase than of their own in "
+           "their kernel support, at most 3% of the particles along the interface). Each guard has a run that "
            "trips it (`GuardsTrip.*`); an unstable job ends FAILED through the service "
            "(`sph_unstable_job_test`, not run by this script).\n")
 out.append("| test | verdict | wall |\n|---|---|---:|")

@@ -1,7 +1,7 @@
 #pragma once
 // The figures the stability suite records over a run, read back from its result file:
-// density deviation, speed, fluid mass, momentum, mechanical energy (fluid kinetic and
-// potential, bodies' kinetic and potential), how far fluid entered a solid, the closest
+// density deviation, speed, fluid mass, momentum, mechanical energy (fluid kinetic, potential
+// and elastic, bodies' kinetic and potential), how far fluid entered a solid, the closest
 // contact, and the phase-change counters. Printed as a table so a CI log shows how each hard
 // case evolved, not only that it passed.
 #include <algorithm>
@@ -20,7 +20,9 @@ struct StabilityFigures {
   std::vector<double> solid_fraction, contact_distance;  // empty without walls / contact
   std::vector<double> body_energy, body_mass;            // empty without bodies
   std::vector<double> melted, solidified, bodies;        // empty without phase change
-  bool all_finite = true;                                // every diagnostic sample finite
+  std::vector<double> interface,
+      stray;               // empty with one fluid phase (solver/diagnostics/phase_mixing.h)
+  bool all_finite = true;  // every diagnostic sample finite
 
   // Fluid + bodies mechanical energy at sample k.
   double energy(std::size_t k) const {
@@ -66,18 +68,26 @@ inline StabilityFigures read_stability_figures(const std::string& result_path,
   f.fluid_mass = rr.series("diagnostics/mass");
   const auto ke = rr.series("diagnostics/kinetic_energy");
   const auto pe = rr.series("diagnostics/potential_energy");
+  // The elastic energy completes the fluid's mechanical energy (results of older code lack it).
+  const auto el = rr.has_series("diagnostics/elastic_energy")
+                      ? rr.series("diagnostics/elastic_energy")
+                      : std::vector<double>(ke.size(), 0.0);
   const auto mom = rr.series("diagnostics/momentum");
   const std::size_t n = f.t.size(), d = mom.size() / std::max<std::size_t>(n, 1);
   for (std::size_t k = 0; k < n; ++k) {
-    f.fluid_energy.push_back(ke[k] + pe[k]);
+    f.fluid_energy.push_back(ke[k] + pe[k] + el[k]);
     double m2 = 0;
     for (std::size_t a = 0; a < d; ++a) m2 += mom[k * d + a] * mom[k * d + a];
     f.momentum.push_back(std::sqrt(m2));
-    for (double v : {f.density_deviation[k], f.max_speed[k], f.fluid_mass[k], ke[k], pe[k]})
+    for (double v : {f.density_deviation[k], f.max_speed[k], f.fluid_mass[k], ke[k], pe[k], el[k]})
       f.all_finite = f.all_finite && std::isfinite(v);
   }
   if (rr.has_series("diagnostics/max_solid_fraction"))
     f.solid_fraction = rr.series("diagnostics/max_solid_fraction");
+  if (rr.has_series("diagnostics/stray_phase_particles")) {
+    f.interface = rr.series("diagnostics/interface_particles");
+    f.stray = rr.series("diagnostics/stray_phase_particles");
+  }
   if (rr.has_series("diagnostics/min_contact_distance"))
     f.contact_distance = rr.series("diagnostics/min_contact_distance");
   if (rr.has_series("bodies/mass")) {
@@ -113,9 +123,9 @@ inline StabilityFigures read_stability_figures(const std::string& result_path,
 // About `rows` rows of the figures over time, for the log.
 inline void print_stability_table(const std::string& name, const StabilityFigures& f,
                                   int rows = 10) {
-  std::printf("%s over time:\n  %9s %9s %9s %12s %13s %9s %9s%s\n", name.c_str(), "t", "max|drho|",
-              "max|u|", "mass drift", "energy", "|momentum|",
-              f.solid_fraction.empty() ? "" : "solid",
+  std::printf("%s over time:\n  %9s %9s %9s %12s %13s %9s %9s%s%s\n", name.c_str(), "t",
+              "max|drho|", "max|u|", "mass drift", "energy", "|momentum|",
+              f.solid_fraction.empty() ? "" : "solid", f.stray.empty() ? "" : " interface  stray",
               f.melted.empty() ? "" : "   melted  frozen  bodies");
   const std::size_t n = f.t.size(),
                     step = std::max<std::size_t>(1, n / static_cast<std::size_t>(rows));
@@ -123,6 +133,7 @@ inline void print_stability_table(const std::string& name, const StabilityFigure
     std::printf("  %9.4g %9.3g %9.3g %12.2e %13.6g %9.3g %9.3g", f.t[k], f.density_deviation[k],
                 f.max_speed[k], f.total_mass(k) / f.total_mass(0) - 1, f.energy(k), f.momentum[k],
                 f.solid_fraction.empty() ? 0.0 : f.solid_fraction[k]);
+    if (!f.stray.empty()) std::printf(" %10.0f %6.0f", f.interface[k], f.stray[k]);
     if (!f.melted.empty())
       std::printf(" %8.0f %7.0f %7.0f", f.melted[k], f.solidified[k], f.bodies[k]);
     std::printf("\n");

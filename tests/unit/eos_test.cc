@@ -49,5 +49,30 @@ TEST(EquationOfState, InverseStaysFiniteUnderSuction) {
   EXPECT_TRUE(std::isfinite(f.density(-1e9)));
 }
 
+// The elastic energy per unit mass is the work int_{rho0}^{rho} p / rho'^2 drho': checked
+// against Simpson's rule on 2000 intervals (error ~1e-13 of the value here), for both EOS, with a
+// background pressure, compressed and expanded.
+TEST(EquationOfState, ElasticEnergyIsThePressureWork) {
+  for (bool tait : {false, true}) {
+    const FluidConstants f = make(tait, 15, 40.0);
+    EXPECT_EQ(f.elastic_energy(1000), 0.0);
+    for (double rho : {930.0, 990.0, 1001.0, 1080.0}) {
+      const int n = 2000;
+      const double h = (rho - 1000) / n;
+      double sum = 0;
+      for (int k = 0; k <= n; ++k) {
+        const double r = 1000 + k * h, g = f.pressure(r) / (r * r);
+        sum += (k == 0 || k == n ? 1 : k % 2 ? 4 : 2) * g;
+      }
+      const double expect = sum * h / 3;
+      EXPECT_NEAR(f.elastic_energy(rho), expect, 1e-10 * std::abs(expect))
+          << "tait " << tait << " rho " << rho;
+    }
+  }
+  // c^2 delta^2 / 2 (1 - 4 delta / 3 + ...) without background pressure.
+  const FluidConstants lin = make(false, 15, 0);
+  EXPECT_NEAR(lin.elastic_energy(1001), 225 * 1e-6 / 2 * (1 - 4e-3 / 3), 1e-5 * 225 * 1e-6 / 2);
+}
+
 }  // namespace
 }  // namespace sph
