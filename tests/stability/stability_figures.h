@@ -20,8 +20,8 @@ struct StabilityFigures {
   std::vector<double> solid_fraction, contact_distance;  // empty without walls / contact
   std::vector<double> body_energy, body_mass;            // empty without bodies
   std::vector<double> melted, solidified, bodies;        // empty without phase change
-  std::vector<double> interface,
-      stray;               // empty with one fluid phase (solver/diagnostics/phase_mixing.h)
+  // Interface and stray particles (solver/diagnostics/phase_mixing.h); empty with one phase.
+  std::vector<double> interface, stray;
   bool all_finite = true;  // every diagnostic sample finite
 
   // Fluid + bodies mechanical energy at sample k.
