@@ -27,6 +27,7 @@ SCENES = [  # folder, scalar, bounds of the scalar (initial and boundary values)
 ]
 STRAY = {"powder_3d_coarse", "powder_slice_2d", "powder_3d"}  # scenes with the metal-outside-grains column
 STRAY_MARGIN = 2e-6
+MIXING = {"powder_2d_coarse", "powder_2d", "powder_3d_coarse", "powder_slice_2d", "powder_3d"}  # melt-gas interface column
 
 
 def grains_of(case_text):
@@ -36,6 +37,39 @@ def grains_of(case_text):
         c = [float(v) for v in re.findall(r"[xyz]: (\S+)", m.group(1))]
         out.append((np.array(c), float(m.group(2))))
     return out
+
+
+def quintic(q):
+    """The quintic spline up to its normalisation (which cancels in the shares below)."""
+    return (np.where(q < 3, (3 - q) ** 5, 0) - 6 * np.where(q < 2, (2 - q) ** 5, 0)
+            + 15 * np.where(q < 1, (1 - q) ** 5, 0))
+
+
+def phase_mixing(snap, dx, h, dim):
+    """(interface, stray) particles of a snapshot as solver/diagnostics/phase_mixing.h counts
+    them: fluid particles with fluid of another material within 3 h, and those of them
+    with more of it in their kernel support (V W, V = m / rho for fluid, dx^d for dummies) than
+    half the support. Computed from the snapshot, so that runs of code older than that
+    diagnostic get the figure too (the solver counts at the positions of its last neighbour
+    search, one drift earlier: the two may differ by a particle)."""
+    from scipy.spatial import cKDTree
+    kind, mat, x = snap["kind"][:], snap["material"][:], snap["position"][:][:, :dim]
+    fluid = kind == 0
+    vol = np.where(fluid, snap["mass"][:] / np.where(fluid, snap["density"][:], 1.0), dx ** dim)
+    tree = cKDTree(x)
+    pairs = tree.sparse_distance_matrix(tree, 3 * h * (1 - 1e-12), output_type="ndarray")
+    i, j, r = pairs["i"], pairs["j"], pairs["v"]
+    keep = fluid[i]
+    i, j, r = i[keep], j[keep], r[keep]
+    self_term = (i == j)  # sparse_distance_matrix leaves out r = 0 pairs: added below
+    vw = vol[j] * quintic(r / h) * ~self_term
+    foreign = fluid[j] & (mat[j] != mat[i])
+    n = len(kind)
+    allw = np.bincount(i, vw, n) + vol * quintic(0.0)
+    fw = np.bincount(i, vw * foreign, n)
+    touched = np.bincount(i, foreign, n) > 0
+    interface = fluid & touched
+    return int(interface.sum()), int((interface & (fw > 0.5 * allw)).sum())
 
 
 def stray_fraction(snap, grains):
@@ -88,18 +122,23 @@ for name, scalar, (lo, hi), times in SCENES:
     print("| particles melted / solidified | %d / %d |" % (ph["melted"][-1], ph["solidified"][-1]))
     print("")
     stray = name in STRAY
+    mixing = name in MIXING
     grains = grains_of(meta["case_text"]) if stray else []
     stimes = np.array([snaps[k].attrs["time"] for k in keys])
-    print("| t | solid mass / initial | bodies | melted | solidified | %s min | %s max | max speed |%s"
-          % (scalar, scalar, " metal > 2 um outside its grains |" if stray else ""))
-    print("|---|---|---|---|---|---|---|---|%s" % ("---|" if stray else ""))
+    print("| t | solid mass / initial | bodies | melted | solidified | %s min | %s max | max speed |%s%s"
+          % (scalar, scalar, " metal > 2 um outside its grains |" if stray else "",
+             " melt-gas interface: stray / interface particles |" if mixing else ""))
+    print("|---|---|---|---|---|---|---|---|%s%s" % ("---|" if stray else "", "---|" if mixing else ""))
     for tt in [x for x in times if x <= t[-1]] + ([t[-1]] if times[-1] > t[-1] else []):
         k = int(np.argmin(abs(tb - tt)))
         kd = int(np.argmin(abs(t - tt)))
         extra = ""
+        ks = int(np.argmin(abs(stimes - tt)))
         if stray:
-            ks = int(np.argmin(abs(stimes - tt)))
             extra = " %.3f (t = %.4g) |" % (stray_fraction(snaps[keys[ks]], grains), stimes[ks])
+        if mixing:
+            itf, st = phase_mixing(snaps[keys[ks]], float(dx), float(meta["h"]), int(meta["dimension"]))
+            extra += " %d / %d (t = %.4g) |" % (st, itf, stimes[ks])
         print("| %.4g | %.3f | %d | %d | %d | %.4g | %.4g | %.3g |%s"
               % (tb[k], solid[k] / solid[0], ph["active_bodies"][k], ph["melted"][k], ph["solidified"][k],
                  smin[kd], smax[kd], d["max_speed"][kd], extra))
