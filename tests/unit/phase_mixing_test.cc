@@ -1,8 +1,8 @@
 // The interface-sharpness diagnostic (solver/diagnostics/phase_mixing.h) on lattices whose
 // answer is known by construction: two fluid phases layered in a periodic box have no stray
-// particle and two kernel radii of interface particles per interface; particles of one phase
-// planted in the bulk of the other are each counted as stray; a particle of one phase on a solid
-// surface, with the other phase around it, is not.
+// particle and four rows of interface particles per interface (two on each side); particles of one
+// phase planted in the bulk of the other are each counted as stray; a particle of one phase on a
+// solid surface, with the other phase around it, is not.
 #include <gtest/gtest.h>
 
 #include <functional>
