@@ -208,6 +208,19 @@ Invariants run_and_measure(const v1::Case& c, const std::string& name) {
   return inv;
 }
 
+// Prints the invariants of a run in which `count` particles `changed` (melted, solidified)
+// and requires fluid plus bodies to keep their momentum and mass to round-off.
+void expect_momentum_and_mass_kept(const char* what, double count, const char* changed,
+                                   const Invariants& inv) {
+  std::printf(
+      "%s: %g particles %s, body mass %.4f -> %.4f; "
+      "largest relative change of the total momentum %.2e, of the mass %.2e\n",
+      what, count, changed, inv.body_mass_start, inv.body_mass_end, inv.momentum_change,
+      inv.mass_change);
+  EXPECT_LT(inv.momentum_change, 1e-12) << what;
+  EXPECT_LT(inv.mass_change, 1e-14) << what;
+}
+
 // A half-melted body keeps moving with the momentum eq. 29 gives it, over a run: the disk
 // melts from its side in the hot half of the box while it moves; the melt carries away the
 // momentum the rigid motion gave it and the remaining body keeps the rest.
@@ -216,16 +229,11 @@ TEST(PhaseChange, AHalfMeltedBodyKeepsTheMomentumOfItsRemainingPart) {
     fluids { material: "water" initial_temperature: 0 shape { box { lo { x: 0 y: 0 } hi { x: 0.5 y: 1 } } } }
     fluids { material: "water" initial_temperature: 100 shape { box { lo { x: 0.5 y: 0 } hi { x: 1 y: 1 } } } })");
   const Invariants inv = run_and_measure(c, "phase_half_melted_momentum");
-  std::printf(
-      "half-melted disk: %g particles melted in 300 steps, body mass %.4f -> %.4f; "
-      "largest relative change of the total momentum %.2e, of the mass %.2e\n",
-      inv.melted, inv.body_mass_start, inv.body_mass_end, inv.momentum_change, inv.mass_change);
+  // Momentum: 7e-15; 3e-3 when a melted particle took the body's acceleration at its place
+  // (with the pull of the rest of the body) instead of its own share of the body's fluid force.
+  expect_momentum_and_mass_kept("half-melted disk", inv.melted, "melted in 300 steps", inv);
   EXPECT_GT(inv.melted, 20.0);                               // melting went on ...
   EXPECT_GT(inv.body_mass_end, 0.25 * inv.body_mass_start);  // ... with a body left (0.45)
-  // 7e-15; 3e-3 when a melted particle took the body's acceleration at its place (with the
-  // pull of the rest of the body) instead of its own share of the body's fluid force.
-  EXPECT_LT(inv.momentum_change, 1e-12);
-  EXPECT_LT(inv.mass_change, 1e-14);
 }
 
 // The reverse: a ring of cold melt around the moving disk (the disk's lattice points are the
@@ -237,15 +245,10 @@ TEST(PhaseChange, LiquidFreezingOntoAMovingBodyKeepsTheTotalMomentum) {
              shape { ball { center { x: 0.5 y: 0.5 } radius: 0.24 } } }
     fluids { material: "water" initial_temperature: 50 shape { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } })");
   const Invariants inv = run_and_measure(c, "phase_frozen_on_momentum");
-  std::printf(
-      "disk with a frozen ring: %g particles solidified, body mass %.4f -> %.4f; "
-      "largest relative change of the total momentum %.2e, of the mass %.2e\n",
-      inv.solidified, inv.body_mass_start, inv.body_mass_end, inv.momentum_change, inv.mass_change);
+  // Momentum: 4e-15; 2.6e-3 when the frozen particles brought no force into their body's sum.
+  expect_momentum_and_mass_kept("disk with a frozen ring", inv.solidified, "solidified", inv);
   EXPECT_GT(inv.solidified, 50.0);
   EXPECT_GT(inv.body_mass_end, inv.body_mass_start);
-  // 4e-15; 2.6e-3 when the frozen particles brought no force into their body's sum.
-  EXPECT_LT(inv.momentum_change, 1e-12);
-  EXPECT_LT(inv.mass_change, 1e-14);
 }
 
 // The first 0.008 of the 2D powder scene at its coarse dx = 0.25 (9.3k particles, 1.6k steps),
