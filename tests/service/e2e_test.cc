@@ -201,7 +201,7 @@ TEST(ServiceEndToEnd, ACutOffPoolKeepsTheCheckpointTheServerKnowsOf) {
   };
   // Two seconds cut off (about ten checkpoints), and at least two newer files on disk.
   std::this_thread::sleep_for(2s);
-  const auto until = std::chrono::steady_clock::now() + 30s;
+  const auto until = std::chrono::steady_clock::now() + scaled(30s);
   while (newer() < 2 && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(50ms);
   ASSERT_GE(newer(), 2) << "the pool wrote no checkpoints while cut off\n" << h.logs();
   EXPECT_TRUE(fs::exists(known)) << "the checkpoint the server knows of was deleted";

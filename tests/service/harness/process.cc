@@ -106,7 +106,7 @@ bool Process::running() {
 std::optional<int> Process::wait(std::chrono::milliseconds timeout) {
   if (pid_ <= 0) return status_;
   if (status_) return status_;
-  const auto until = std::chrono::steady_clock::now() + timeout;
+  const auto until = std::chrono::steady_clock::now() + scaled(timeout);
   while (true) {
     int st = 0;
     const pid_t r = waitpid(pid_, &st, WNOHANG);
@@ -176,7 +176,7 @@ CommandResult run_command(const std::vector<std::string>& argv, const std::strin
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) throw std::runtime_error("posix_spawn " + argv[0] + ": " + std::strerror(rc));
   CommandResult r;
-  const auto until = std::chrono::steady_clock::now() + timeout;
+  const auto until = std::chrono::steady_clock::now() + scaled(timeout);
   while (true) {
     int st = 0;
     if (waitpid(pid, &st, WNOHANG) == pid) {

@@ -29,7 +29,8 @@ class Process {
 
   pid_t pid() const { return pid_; }
   bool running();
-  // The exit code (128 + signal for a killed process), or nullopt on timeout.
+  // The exit code (128 + signal for a killed process), or nullopt once the (scaled) timeout
+  // passes.
   std::optional<int> wait(std::chrono::milliseconds timeout);
   void signal(int sig);
   // Sends `sig` to every process in the child's session (mpirun and all its ranks).
@@ -50,17 +51,24 @@ struct CommandResult {
   std::string err;     // stderr
 };
 
-// Runs a command to completion and captures its output.
+// Runs a command to completion (killed once the scaled timeout passes) and captures its output.
 CommandResult run_command(const std::vector<std::string>& argv, const std::string& work_dir,
                           std::chrono::milliseconds timeout,
                           const std::map<std::string, std::string>& env = {});
 
 std::string read_file(const std::string& path);
 
-// Polls `done` every 50 ms until it returns true or the timeout passes.
+// A time limit of the harness as this build needs it: sanitized builds run several times
+// slower, so every wait here (eventually, run_command, Process::wait) is SPHD_TEST_TIME_SCALE
+// times what a test states (top-level CMakeLists.txt).
+inline std::chrono::milliseconds scaled(std::chrono::milliseconds timeout) {
+  return timeout * SPHD_TEST_TIME_SCALE;
+}
+
+// Polls `done` every 50 ms until it returns true or the (scaled) timeout passes.
 template <typename Predicate>
 bool eventually(std::chrono::milliseconds timeout, Predicate done) {
-  const auto until = std::chrono::steady_clock::now() + timeout;
+  const auto until = std::chrono::steady_clock::now() + scaled(timeout);
   while (true) {
     if (done()) return true;
     if (std::chrono::steady_clock::now() >= until) return false;
