@@ -1,6 +1,7 @@
 #include "solver/bodies/phase_transitions.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace sph {
 
@@ -8,7 +9,8 @@ template <int D>
 typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
     ParticleStore<D>& s, const NeighborList<D>& nl, RigidBodies<D>& bodies,
     const Column<double>* temperature, const Column<double>* concentration,
-    Column<Vec<D>>* transport, const Vec<D>& fluid_body_force, const Comm& comm) {
+    Column<Vec<D>>* transport, const Vec<D>& fluid_body_force, std::int64_t step,
+    const Comm& comm) {
   Outcome out;
   auto& bs = bodies.bodies();
   auto& body = bodies.body_index();
@@ -19,7 +21,8 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
   // 1. Decide on the state at the end of the step (ghosts as built at its start, like the
   //    owned particles' kinds and bodies), before anything changes: rank-independent.
   std::vector<std::pair<std::size_t, const PhaseRule*>> melt, freeze;
-  std::vector<std::int64_t> involved(nb + 2, 0);  // per body, then melted and solidified counts
+  // Per body, then the counts of melted, solidified and reversing particles.
+  std::vector<std::int64_t> involved(nb + 3, 0);
   for (std::size_t i = 0; i < s.owned(); ++i) {
     for (const PhaseRule& r : rules_) {
       if (s.kind[i] == Kind::kRigid && s.material[i] == r.solid && value(r, i) > r.melt_above) {
@@ -40,6 +43,16 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
       }
     }
   }
+  // Reversals: particles changing phase again, and the fewest steps since their last change.
+  std::int64_t shortest = std::numeric_limits<std::int64_t>::max();
+  for (const auto* list : {&melt, &freeze})
+    for (const auto& [i, r] : *list) {
+      if (changed_[i] > 0) {
+        ++involved[nb + 2];
+        shortest = std::min(shortest, step + 1 - changed_[i]);
+      }
+      changed_[i] = step + 1;
+    }
   involved[nb] = static_cast<std::int64_t>(melt.size());
   involved[nb + 1] = static_cast<std::int64_t>(freeze.size());
   comm.sum_inplace(involved);
@@ -48,6 +61,11 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
   if (out.melted == 0 && out.solidified == 0) return out;
   melted_total_ += out.melted;
   solidified_total_ += out.solidified;
+  if (involved[nb + 2] > 0) {  // a global count: every rank takes part in the minimum
+    reversals_total_ += involved[nb + 2];
+    shortest = comm.min(shortest);
+    shortest_reversal_ = shortest_reversal_ > 0 ? std::min(shortest_reversal_, shortest) : shortest;
+  }
 
   // 2. Apply the change of phase to the owned particles. Forces for the next half kick: the
   //    body received the sum of its particles' fluid forces (eq. 19) in this step's last

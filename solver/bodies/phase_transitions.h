@@ -17,6 +17,12 @@
 // Bodies are then regrouped (BodyRegrouping: pieces, merges and new bodies with eq. 29's
 // velocities); melted particles carry their momentum into the fluid, so momentum is conserved
 // throughout.
+//
+// Flicker, a particle changing phase back and forth while its value hovers at the threshold,
+// is what the hysteresis band prevents; the run measures it. Every particle carries the step
+// of its last transition, and a transition of a particle that has changed phase before is a
+// reversal: the unit counts them and keeps the fewest steps between a particle's two
+// transitions. A reversal every few steps is flicker; one per thermal cycle is physics.
 #include <algorithm>
 #include <cstdint>
 #include <map>
@@ -43,9 +49,15 @@ class PhaseTransitions {
  public:
   static constexpr const char* kName = "phase_transition";
 
-  PhaseTransitions(std::vector<PhaseRule> rules, std::size_t max_bodies, double dx)
+  // Adds the per-particle step of the last transition to `s` (persistent: it migrates and is
+  // checkpointed; zero, never, in checkpoints written before it existed).
+  PhaseTransitions(ParticleStore<D>& s, std::vector<PhaseRule> rules, std::size_t max_bodies,
+                   double dx)
       : rules_(std::move(rules)),
-        regrouping_(largest_join_radius(rules_), max_bodies, dx, "phase_transitions[].max_bodies") {
+        regrouping_(largest_join_radius(rules_), max_bodies, dx, "phase_transitions[].max_bodies"),
+        changed_(s.template add<std::int64_t>("phase_changed_at", kName, true)) {
+    changed_.set_ghost(false);
+    changed_.set_zero_if_absent(true);
   }
 
   struct Outcome {
@@ -53,27 +65,38 @@ class PhaseTransitions {
     std::string error;                        // non-empty: the run cannot go on
   };
 
-  // Collective. `temperature`/`concentration` may be null when no rule uses them;
-  // `transport` is the transport velocity column (null without TVF); `fluid_body_force` the
-  // body force per unit mass on the fluid (gravity) at the end of the step.
+  // Collective, at the end of step `step`. `temperature`/`concentration` may be null when no
+  // rule uses them; `transport` is the transport velocity column (null without TVF);
+  // `fluid_body_force` the body force per unit mass on the fluid (gravity) at the end of the
+  // step.
   Outcome run(ParticleStore<D>& s, const NeighborList<D>& nl, RigidBodies<D>& bodies,
               const Column<double>* temperature, const Column<double>* concentration,
-              Column<Vec<D>>* transport, const Vec<D>& fluid_body_force, const Comm& comm);
+              Column<Vec<D>>* transport, const Vec<D>& fluid_body_force, std::int64_t step,
+              const Comm& comm);
 
   std::int64_t melted_total() const { return melted_total_; }
   std::int64_t solidified_total() const { return solidified_total_; }
+  // Transitions of particles that had changed phase before, all ranks, since the start.
+  std::int64_t reversals_total() const { return reversals_total_; }
+  // The fewest steps between two transitions of one particle so far (0: no reversal yet).
+  std::int64_t shortest_reversal() const { return shortest_reversal_; }
   std::size_t max_bodies() const { return regrouping_.max_bodies(); }
   // The running totals are cumulative series: a resumed run continues them.
   void save(CheckpointState& state) const {
     state["phase_melted_total"] = static_cast<double>(melted_total_);
     state["phase_solidified_total"] = static_cast<double>(solidified_total_);
+    state["phase_reversals_total"] = static_cast<double>(reversals_total_);
+    state["phase_shortest_reversal"] = static_cast<double>(shortest_reversal_);
   }
-  // Checkpoints written before the totals were saved restart them at zero.
+  // Checkpoints written before a total was saved restart it at zero.
   void load(const CheckpointState& state) {
-    if (state.count("phase_melted_total"))
-      melted_total_ = static_cast<std::int64_t>(state_value(state, "phase_melted_total"));
-    if (state.count("phase_solidified_total"))
-      solidified_total_ = static_cast<std::int64_t>(state_value(state, "phase_solidified_total"));
+    auto total = [&](const char* key, std::int64_t& value) {
+      if (state.count(key)) value = static_cast<std::int64_t>(state_value(state, key));
+    };
+    total("phase_melted_total", melted_total_);
+    total("phase_solidified_total", solidified_total_);
+    total("phase_reversals_total", reversals_total_);
+    total("phase_shortest_reversal", shortest_reversal_);
   }
 
  private:
@@ -85,7 +108,10 @@ class PhaseTransitions {
 
   std::vector<PhaseRule> rules_;
   BodyRegrouping<D> regrouping_;
+  // Per particle: 1 + the step of its last transition, 0 if it has not changed phase.
+  Column<std::int64_t>& changed_;
   std::int64_t melted_total_ = 0, solidified_total_ = 0;
+  std::int64_t reversals_total_ = 0, shortest_reversal_ = 0;
 };
 
 }  // namespace sph

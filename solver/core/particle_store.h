@@ -40,6 +40,10 @@ class ColumnBase {
   // ghosts need only later in a step are refreshed by Halo::update() instead.
   bool ghost() const { return ghost_; }
   void set_ghost(bool g) { ghost_ = g; }
+  // A persistent column added after checkpoints of its case were already written: resuming
+  // from one that lacks it starts the column at zero instead of refusing the checkpoint.
+  bool zero_if_absent() const { return zero_if_absent_; }
+  void set_zero_if_absent(bool z) { zero_if_absent_ = z; }
   std::size_t elem_bytes() const { return elem_bytes_; }
   virtual void resize(std::size_t n) = 0;
   virtual std::size_t capacity_bytes() const = 0;
@@ -50,7 +54,7 @@ class ColumnBase {
 
  private:
   std::string name_, owner_;
-  bool persistent_, ghost_;
+  bool persistent_, ghost_, zero_if_absent_ = false;
   std::size_t elem_bytes_;
 };
 

@@ -1,5 +1,6 @@
 #include "solver/io/checkpoint.h"
 
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
@@ -61,6 +62,10 @@ CheckpointState read_checkpoint(const Comm& comm, const std::string& path, Parti
   for (const auto& c : s.columns()) {
     if (!c->persistent()) continue;
     const std::string name = "/particles/" + c->name();
+    if (!h5::exists(f, name) && c->zero_if_absent()) {
+      std::memset(c->bytes(), 0, (last - first) * c->elem_bytes());
+      continue;
+    }
     if (!h5::exists(f, name))
       throw std::runtime_error("checkpoint " + path + " has no column '" + c->name() +
                                "': it was written for a different case configuration");

@@ -40,6 +40,10 @@ class Comm {
     MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT64_T, MPI_MAX, comm_);
     return v;
   }
+  std::int64_t min(std::int64_t v) const {
+    MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT64_T, MPI_MIN, comm_);
+    return v;
+  }
   void max_inplace(std::vector<double>& v) const {
     MPI_Allreduce(MPI_IN_PLACE, v.data(), static_cast<int>(v.size()), MPI_DOUBLE, MPI_MAX, comm_);
   }

@@ -320,9 +320,10 @@ void Simulation<D, K>::build_phase_transitions() {
         std::max(slots, pt.has_max_bodies() ? static_cast<std::size_t>(pt.max_bodies())
                                             : 2 * static_cast<std::size_t>(c_.bodies_size()) + 64);
   }
-  phase_.emplace(std::move(rules), slots, dx_);
+  phase_.emplace(s_, std::move(rules), slots, dx_);
   units_.push_back(PhaseTransitions<D>::kName);
-  for (const char* n : {"melted", "solidified", "active_bodies"})
+  for (const char* n :
+       {"melted", "solidified", "active_bodies", "reversals", "shortest_reversal_steps"})
     result_.add_series(std::string("phase/") + n);
 }
 
@@ -334,7 +335,7 @@ std::string Simulation<D, K>::apply_phase_transitions() {
     Timer tm(timer(PhaseTransitions<D>::kName));
     out = phase_->run(s_, nl_, *bodies_, heat_ ? &heat_->values() : nullptr,
                       concentration_ ? &concentration_->values() : nullptr, transport_,
-                      fluid_body_force(t_), comm_);
+                      fluid_body_force(t_), step_, comm_);
   }
   if (!out.error.empty()) {
     char buf[120];
@@ -990,6 +991,9 @@ void Simulation<D, K>::sample_bodies() {
     result_.append_series("phase/melted", {static_cast<double>(phase_->melted_total())});
     result_.append_series("phase/solidified", {static_cast<double>(phase_->solidified_total())});
     result_.append_series("phase/active_bodies", {static_cast<double>(active)});
+    result_.append_series("phase/reversals", {static_cast<double>(phase_->reversals_total())});
+    result_.append_series("phase/shortest_reversal_steps",
+                          {static_cast<double>(phase_->shortest_reversal())});
   }
 }
 

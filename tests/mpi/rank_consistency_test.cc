@@ -247,13 +247,12 @@ TEST(RankConsistency, PowderGrainsMeltingInContactAcrossRanks) {
       {"bodies/position", "diagnostics/interface_particles", "diagnostics/stray_phase_particles"});
 }
 
-TEST(RankConsistency, MeltingAndFreezingWithNewAndMergingBodiesAcrossRanks) {
-  // Both directions of the phase transition at once, on particles spread over ranks (the
-  // stability suite's melt/freeze case, coarse, its disk next to the left wall and one short
-  // hot phase): the disk melts from the hot wall inwards while, once the walls turn cold, the
-  // melt freezes along them into new bodies that grow and merge (measured on one rank: 170 of
-  // 177 disk particles melted, 618 solidified (all of it), up to 8 bodies at once, 1 at the
-  // end).
+// The stability suite's melt/freeze case, coarse, its disk next to the left wall and one short
+// hot phase: the disk melts from the hot wall inwards while, once the walls turn cold, the melt
+// freezes along them into new bodies that grow and merge (measured on one rank: 170 of 177
+// disk particles melted, 618 solidified (all of it), up to 8 bodies at once, 1 at the end; the
+// 170 melted froze again, 143 steps after melting at the soonest, 30 of them by step 250).
+v1::Case melt_freeze_by_the_hot_wall() {
   auto c = test::load_case("melt_freeze_cycles_2d");
   c.set_dx(0.04);
   c.mutable_bodies(0)->mutable_shape()->mutable_ball()->mutable_center()->set_x(0.33);
@@ -265,7 +264,13 @@ TEST(RankConsistency, MeltingAndFreezingWithNewAndMergingBodiesAcrossRanks) {
     schedule->add_times(t);
     schedule->add_values(T);
   }
-  check_rank_counts("melt_freeze", c, 600, false);  // all frozen at the end: no fluid rho
+  return c;
+}
+
+TEST(RankConsistency, MeltingAndFreezingWithNewAndMergingBodiesAcrossRanks) {
+  // Both directions of the phase transition at once, on particles spread over ranks; all
+  // frozen at the end, so no fluid density to compare.
+  check_rank_counts("melt_freeze", melt_freeze_by_the_hot_wall(), 600, false);
   if (world_rank() != 0) return;
   const std::string base = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_melt_freeze_";
   test::ResultReader r1(base + "1/result.h5"), r2(base + "2/result.h5"), r4(base + "4/result.h5");
@@ -273,8 +278,11 @@ TEST(RankConsistency, MeltingAndFreezingWithNewAndMergingBodiesAcrossRanks) {
   const auto bodies = r1.series("phase/active_bodies");
   const double most = *std::max_element(bodies.begin(), bodies.end());
   std::printf(
-      "melt/freeze: %g melted, %g solidified in 600 steps, up to %g bodies, %g at the end\n",
-      melted.back(), frozen.back(), most, bodies.back());
+      "melt/freeze: %g melted, %g solidified in 600 steps, up to %g bodies, %g at the end; %g "
+      "reversals, the fewest steps between two transitions of a particle %g\n",
+      melted.back(), frozen.back(), most, bodies.back(), r1.series("phase/reversals").back(),
+      r1.series("phase/shortest_reversal_steps").back());
+  EXPECT_GT(r1.series("phase/reversals").back(), 0.0);  // melted particles froze again
   EXPECT_GT(melted.back(), 100.0);
   EXPECT_GT(frozen.back(), 100.0);
   EXPECT_GE(most, 3.0);            // new bodies born apart from each other ...
@@ -283,6 +291,10 @@ TEST(RankConsistency, MeltingAndFreezingWithNewAndMergingBodiesAcrossRanks) {
     EXPECT_EQ(melted, r->series("phase/melted"));
     EXPECT_EQ(frozen, r->series("phase/solidified"));
     EXPECT_EQ(bodies, r->series("phase/active_bodies"));
+    // The step of each particle's last transition migrates with it.
+    EXPECT_EQ(r1.series("phase/reversals"), r->series("phase/reversals"));
+    EXPECT_EQ(r1.series("phase/shortest_reversal_steps"),
+              r->series("phase/shortest_reversal_steps"));
     expect_same_series(r1, *r, {"bodies/mass", "bodies/position", "bodies/velocity"});
   }
 }
@@ -517,7 +529,8 @@ void check_resume(const std::string& name, v1::Case c, std::int64_t steps, int a
       ASSERT_LT(k, step.size()) << "no sample at the checkpoint's step";
       EXPECT_GT(melted[k], 0.0) << "nothing to carry over at the checkpoint";
     }
-    for (const char* n : {"phase/melted", "phase/solidified"})
+    for (const char* n :
+         {"phase/melted", "phase/solidified", "phase/reversals", "phase/shortest_reversal_steps"})
       if (rr.has_series(n)) {
         EXPECT_EQ(rs.series(n), rr.series(n)) << n << ", " << ranks << " ranks";
       }
@@ -550,6 +563,15 @@ TEST(RankConsistency, BolusesResumeFromCheckpointOnAnyRankCount) {
   c.mutable_output()->set_series_interval(1e-6);  // every step: rows after the checkpoint
   // Melting starts at step 230: the checkpoint at 300 has melted particles to count on from.
   check_resume("boluses", c, 400, 300);
+}
+
+TEST(RankConsistency, MeltingAndFreezingResumesFromCheckpointOnAnyRankCount) {
+  // Each particle's last transition is in the checkpoint's columns: the melted particles that
+  // freeze after the resume (140 of the 170) count as reversals only if it came back, and
+  // where it lands after the resume's migration must not matter.
+  auto c = melt_freeze_by_the_hot_wall();
+  c.mutable_output()->set_series_interval(1e-12);  // every step: rows after the checkpoint
+  check_resume("melt_freeze", c, 600, 250);
 }
 
 TEST(RankConsistency, ABodyHalfwayThroughTheOutletResumesFromCheckpoint) {

@@ -45,8 +45,9 @@ struct Fixture {
     halo.set_decomposition(Decomposition<2>(grid, 1, counts));
     nl.build(s, grid, halo.ghost_box(), 0.3, nullptr, true);
   }
+  std::int64_t step = 0;  // each run() is the end of the next step
   PhaseTransitions<2>::Outcome run(PhaseTransitions<2>& pt) {
-    return pt.run(s, nl, *bodies, T, nullptr, nullptr, Vec<2>::Zero(), comm);
+    return pt.run(s, nl, *bodies, T, nullptr, nullptr, Vec<2>::Zero(), ++step, comm);
   }
   Vec<2> momentum() const {  // bodies plus fluid
     Vec<2> p = Vec<2>::Zero();
@@ -82,7 +83,7 @@ TEST(PhaseTransition, HalfMeltedBodyMovesAsEq29Says) {
   const Vec<2> p0 = f.momentum();
   const double m0 = f.mass();
   for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = f.s.x[i][0] > 0.3 ? 100 : 0;
-  PhaseTransitions<2> pt({rule(50, 0, false)}, 8, 0.1);
+  PhaseTransitions<2> pt(f.s, {rule(50, 0, false)}, 8, 0.1);
   const auto out = f.run(pt);
   ASSERT_TRUE(out.error.empty()) << out.error;
   const RigidBody<2>& b = f.bodies->bodies()[0];
@@ -119,7 +120,7 @@ TEST(PhaseTransition, BodyMeltedThroughBecomesTwoBodies) {
   const RigidBody<2> before = f.bodies->bodies()[0];
   const Vec<2> p0 = f.momentum();
   for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = std::abs(f.s.x[i][0]) < 0.45 ? 100 : 0;
-  PhaseTransitions<2> pt({rule(50, 0, false)}, 8, 0.1);
+  PhaseTransitions<2> pt(f.s, {rule(50, 0, false)}, 8, 0.1);
   ASSERT_TRUE(f.run(pt).error.empty());
   const auto& bs = f.bodies->bodies();
   ASSERT_EQ(bs.size(), 2u);
@@ -155,7 +156,7 @@ TEST(PhaseTransition, PiecesOfABodyGetTheirOwnForces) {
   whole.mean_contact_force = Vec<2>(0, 10);
   const RigidBody<2> before = whole;  // `whole` is slot 0, which the first piece takes
   for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = std::abs(f.s.x[i][0]) < 0.45 ? 100 : 0;
-  PhaseTransitions<2> pt({rule(50, 0, false)}, 8, 0.1);
+  PhaseTransitions<2> pt(f.s, {rule(50, 0, false)}, 8, 0.1);
   ASSERT_TRUE(f.run(pt).error.empty());
   const auto& bs = f.bodies->bodies();
   ASSERT_EQ(bs.size(), 2u);
@@ -196,7 +197,7 @@ TEST(PhaseTransition, PrescribedRotatingBodyStaysOnItsPath) {
   for (std::size_t i = 0; i < f.s.owned(); ++i)
     ASSERT_NEAR((f.s.x[i] - on_path(x0[f.s.id[i]], 0.4)).norm(), 0.0, 1e-12);
   for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = x0[f.s.id[i]][0] > 1.1 ? 100 : 0;
-  PhaseTransitions<2> pt({rule(50, 0, false)}, 8, 0.1);
+  PhaseTransitions<2> pt(f.s, {rule(50, 0, false)}, 8, 0.1);
   ASSERT_TRUE(f.run(pt).error.empty());
   const RigidBody<2>& b = f.bodies->bodies()[0];
   ASSERT_TRUE(b.active());
@@ -227,7 +228,7 @@ TEST(PhaseTransition, LiquidFreezesOntoABodyOrIntoANewOne) {
     (*f.T)[i] = 0;
     if (f.s.kind[i] == Kind::kFluid) (f.s.x[i][1] > 1 ? n_drop : n_film) += 1;
   }
-  PhaseTransitions<2> pt({rule(50, 0, true)}, 8, 0.1);
+  PhaseTransitions<2> pt(f.s, {rule(50, 0, true)}, 8, 0.1);
   const auto out = f.run(pt);
   ASSERT_TRUE(out.error.empty()) << out.error;
   EXPECT_EQ(out.solidified, n_film + n_drop);
@@ -283,7 +284,7 @@ TEST(PhaseTransition, LiquidFreezingBetweenTwoBodiesMergesThemWithTheirMomentum)
     n_film += f.s.kind[i] == Kind::kFluid;
   }
   ASSERT_GT(n_film, 0);
-  PhaseTransitions<2> pt({rule(50, 0, true)}, 8, 0.1);
+  PhaseTransitions<2> pt(f.s, {rule(50, 0, true)}, 8, 0.1);
   const auto out = f.run(pt);
   ASSERT_TRUE(out.error.empty()) << out.error;
   EXPECT_EQ(out.solidified, n_film);
@@ -316,7 +317,7 @@ TEST(PhaseTransition, HysteresisBandStopsFlicker) {
   Fixture f(scene(R"(bodies { name: "b" material: "solid"
                        shape { box { lo { x: -0.5 y: -0.5 } hi { x: 0.5 y: 0.5 } } } })"),
             Vec<2>(0, 0), 0.0);
-  PhaseTransitions<2> pt({rule(50, 10, true)}, 8, 0.1);  // melts above 55, freezes below 45
+  PhaseTransitions<2> pt(f.s, {rule(50, 10, true)}, 8, 0.1);  // melts above 55, freezes below 45
   auto set_all = [&](double t) {
     for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = t;
   };
@@ -336,6 +337,43 @@ TEST(PhaseTransition, HysteresisBandStopsFlicker) {
   EXPECT_EQ(pt.solidified_total(), melted);
 }
 
+// Flicker shows as reversals a few steps apart: each particle's last transition is kept, and
+// the unit counts the transitions of particles that had changed phase before and the fewest
+// steps between two of them.
+TEST(PhaseTransition, ReversalsAreCountedWithTheFewestStepsBetweenThem) {
+  Fixture f(scene(R"(bodies { name: "b" material: "solid"
+                       shape { box { lo { x: -0.5 y: -0.5 } hi { x: 0.5 y: 0.5 } } } })"),
+            Vec<2>(0, 0), 0.0);
+  PhaseTransitions<2> pt(f.s, {rule(50, 10, true)}, 8, 0.1);  // melts above 55, freezes below 45
+  auto step_at = [&](double t) {
+    for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = t;
+    return f.run(pt);
+  };
+  const auto n = static_cast<std::int64_t>(f.s.owned());
+  EXPECT_EQ(step_at(56).melted, n);  // step 1: a first transition is no reversal
+  EXPECT_EQ(pt.reversals_total(), 0);
+  EXPECT_EQ(pt.shortest_reversal(), 0);
+  step_at(50);
+  step_at(50);
+  EXPECT_EQ(step_at(44).solidified, n);  // step 4
+  EXPECT_EQ(pt.reversals_total(), n);
+  EXPECT_EQ(pt.shortest_reversal(), 3);
+  EXPECT_EQ(step_at(56).melted, n);  // step 5: back after one step
+  EXPECT_EQ(pt.reversals_total(), 2 * n);
+  EXPECT_EQ(pt.shortest_reversal(), 1);
+  step_at(50);  // no transition: the record stays
+  EXPECT_EQ(pt.reversals_total(), 2 * n);
+  const auto& changed = f.s.get<std::int64_t>("phase_changed_at");
+  for (std::size_t i = 0; i < f.s.owned(); ++i) EXPECT_EQ(changed[i], 6) << "particle " << i;
+  // A checkpoint carries the totals.
+  CheckpointState state;
+  pt.save(state);
+  PhaseTransitions<2> resumed(f.s, {rule(50, 10, true)}, 8, 0.1);
+  resumed.load(state);
+  EXPECT_EQ(resumed.reversals_total(), 2 * n);
+  EXPECT_EQ(resumed.shortest_reversal(), 1);
+}
+
 TEST(PhaseTransition, BodyTableCapacityIsEnforced) {
   Fixture f(scene(R"(fluids { name: "a" material: "liquid"
                        shape { ball { center { x: -2 y: 0 } radius: 0.3 } } }
@@ -343,7 +381,7 @@ TEST(PhaseTransition, BodyTableCapacityIsEnforced) {
                        shape { ball { center { x: 2 y: 0 } radius: 0.3 } } })"),
             Vec<2>(0, 0), 0.0);
   for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = 0;
-  PhaseTransitions<2> pt({rule(50, 0, true)}, 1, 0.1);
+  PhaseTransitions<2> pt(f.s, {rule(50, 0, true)}, 1, 0.1);
   const auto out = f.run(pt);
   EXPECT_NE(out.error.find("max_bodies"), std::string::npos) << out.error;
 }
@@ -357,7 +395,7 @@ TEST(PhaseTransition, AnEmptiedSlotGoesToTheNextBodyMade) {
                               fluids { name: "b" material: "liquid"
                                 shape { ball { center { x: 2 y: 0 } radius: 0.3 } } })");
   Fixture f(c, Vec<2>(0, 0), 0.0);
-  PhaseTransitions<2> pt({rule(50, 0, true)}, 2, 0.1);  // room for two bodies
+  PhaseTransitions<2> pt(f.s, {rule(50, 0, true)}, 2, 0.1);  // room for two bodies
   auto set = [&](double left, double right) {
     for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = f.s.x[i][0] < 0 ? left : right;
   };
