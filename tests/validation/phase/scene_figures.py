@@ -120,6 +120,9 @@ for name, scalar, (lo, hi), times in SCENES:
     print("| total mass over snapshots, max relative change | %.1e%s |"
           % (drift, " (gas in and out through the open boundaries)" if "open_boundaries" in f["series"] else ""))
     print("| particles melted / solidified | %d / %d |" % (ph["melted"][-1], ph["solidified"][-1]))
+    if "reversals" in ph:  # runs of code from 2463519 on
+        print("| reversals (a particle's second or later transition) / fewest steps between two | %d / %d |"
+              % (ph["reversals"][-1], ph["shortest_reversal_steps"][-1]))
     print("")
     stray = name in STRAY
     mixing = name in MIXING
