@@ -45,6 +45,9 @@ struct Fixture {
     halo.set_decomposition(Decomposition<2>(grid, 1, counts));
     nl.build(s, grid, halo.ghost_box(), 0.3, nullptr, true);
   }
+  void set_temperature(double t) {
+    for (std::size_t i = 0; i < s.owned(); ++i) (*T)[i] = t;
+  }
   std::int64_t step = 0;  // each run() is the end of the next step
   PhaseTransitions<2>::Outcome run(PhaseTransitions<2>& pt) {
     return pt.run(s, nl, *bodies, T, nullptr, nullptr, Vec<2>::Zero(), ++step, comm);
@@ -313,25 +316,26 @@ TEST(PhaseTransition, LiquidFreezingBetweenTwoBodiesMergesThemWithTheirMomentum)
         1e-13);
 }
 
+// One square body at rest, every particle at the same temperature.
+v1::Case square_body() {
+  return scene(R"(bodies { name: "b" material: "solid"
+                    shape { box { lo { x: -0.5 y: -0.5 } hi { x: 0.5 y: 0.5 } } } })");
+}
+
 TEST(PhaseTransition, HysteresisBandStopsFlicker) {
-  Fixture f(scene(R"(bodies { name: "b" material: "solid"
-                       shape { box { lo { x: -0.5 y: -0.5 } hi { x: 0.5 y: 0.5 } } } })"),
-            Vec<2>(0, 0), 0.0);
+  Fixture f(square_body(), Vec<2>(0, 0), 0.0);
   PhaseTransitions<2> pt(f.s, {rule(50, 10, true)}, 8, 0.1);  // melts above 55, freezes below 45
-  auto set_all = [&](double t) {
-    for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = t;
-  };
-  set_all(54);  // inside the band: stays solid
+  f.set_temperature(54);                                      // inside the band: stays solid
   EXPECT_EQ(f.run(pt).melted, 0);
-  set_all(56);
+  f.set_temperature(56);
   const auto melted = f.run(pt).melted;
   EXPECT_EQ(melted, f.s.owned());
   EXPECT_FALSE(f.bodies->bodies()[0].active());
   for (double t : {54.0, 50.0, 46.0}) {  // cooling inside the band: stays liquid
-    set_all(t);
+    f.set_temperature(t);
     EXPECT_EQ(f.run(pt).solidified, 0) << "at T = " << t;
   }
-  set_all(44);
+  f.set_temperature(44);
   EXPECT_EQ(f.run(pt).solidified, melted);
   EXPECT_EQ(pt.melted_total(), melted);
   EXPECT_EQ(pt.solidified_total(), melted);
@@ -341,12 +345,10 @@ TEST(PhaseTransition, HysteresisBandStopsFlicker) {
 // the unit counts the transitions of particles that had changed phase before and the fewest
 // steps between two of them.
 TEST(PhaseTransition, ReversalsAreCountedWithTheFewestStepsBetweenThem) {
-  Fixture f(scene(R"(bodies { name: "b" material: "solid"
-                       shape { box { lo { x: -0.5 y: -0.5 } hi { x: 0.5 y: 0.5 } } } })"),
-            Vec<2>(0, 0), 0.0);
+  Fixture f(square_body(), Vec<2>(0, 0), 0.0);
   PhaseTransitions<2> pt(f.s, {rule(50, 10, true)}, 8, 0.1);  // melts above 55, freezes below 45
   auto step_at = [&](double t) {
-    for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = t;
+    f.set_temperature(t);
     return f.run(pt);
   };
   const auto n = static_cast<std::int64_t>(f.s.owned());
@@ -380,7 +382,7 @@ TEST(PhaseTransition, BodyTableCapacityIsEnforced) {
                      fluids { name: "b" material: "liquid"
                        shape { ball { center { x: 2 y: 0 } radius: 0.3 } } })"),
             Vec<2>(0, 0), 0.0);
-  for (std::size_t i = 0; i < f.s.owned(); ++i) (*f.T)[i] = 0;
+  f.set_temperature(0);
   PhaseTransitions<2> pt(f.s, {rule(50, 0, true)}, 1, 0.1);
   const auto out = f.run(pt);
   EXPECT_NE(out.error.find("max_bodies"), std::string::npos) << out.error;
