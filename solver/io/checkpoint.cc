@@ -63,7 +63,7 @@ CheckpointState read_checkpoint(const Comm& comm, const std::string& path, Parti
     if (!c->persistent()) continue;
     const std::string name = "/particles/" + c->name();
     if (!h5::exists(f, name) && c->zero_if_absent()) {
-      std::memset(c->bytes(), 0, (last - first) * c->elem_bytes());
+      if (last > first) std::memset(c->bytes(), 0, (last - first) * c->elem_bytes());
       continue;
     }
     if (!h5::exists(f, name))
