@@ -41,8 +41,8 @@ TEST(Checkpoint, AColumnAddedLaterStartsAtZeroAndAnyOtherMissingOneIsNamed) {
   later.fill(7);
   const CheckpointState state = read_checkpoint<2>(comm, path, s);
   EXPECT_EQ(state.at("time"), 0.25);
-  std::size_t n = s.owned();
-  std::size_t total = static_cast<std::size_t>(comm.sum(static_cast<std::int64_t>(n)));
+  const std::size_t n = s.owned();
+  const std::size_t total = static_cast<std::size_t>(comm.sum(static_cast<std::int64_t>(n)));
   EXPECT_EQ(total, 5u);
   for (std::size_t i = 0; i < n; ++i) {
     EXPECT_EQ(tag[i], 1.5 + static_cast<double>(s.id[i])) << "particle " << s.id[i];
