@@ -25,7 +25,9 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
   const std::size_t n = s.size();
   cell_of_.resize(n);
   cell_start_.assign(ncell + 1, 0);
-  cell_fluid_.assign(ncell, 0);
+  // Per half cell: whether it holds fluid (bit 0) or rigid particles (bit 1), so that walls and
+  // rigid particles with nothing to list around them are passed over without a scan.
+  cell_kinds_.assign(ncell, 0);
   const Vec<D>* x = s.x.data();
   const Kind* kind = s.kind.data();
   const ParticleId* id = s.id.data();
@@ -43,7 +45,9 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
           static_cast<std::size_t>(std::clamp(c[a] - 2 * box.lo[a], margin, dims_[a] - 1 - margin));
     cell_of_[i] = static_cast<std::uint32_t>(lin);
     ++cell_start_[lin + 1];
-    if (kind[i] == Kind::kFluid) ++cell_fluid_[lin];
+    cell_kinds_[lin] |= static_cast<std::uint8_t>(kind[i] == Kind::kFluid   ? 1
+                                                  : kind[i] == Kind::kRigid ? 2
+                                                                            : 0);
   }
   for (std::size_t c = 0; c < ncell; ++c) cell_start_[c + 1] += cell_start_[c];
   cell_items_.resize(n);
@@ -105,10 +109,14 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
     // too (see ScalarDiffusion::extrapolate_walls), so walls list them after their fluid.
     const bool wall_rigid = rigid_all && kind[i] == Kind::kWall;
     if (!fluid && !contacts && !all) {
+      // A wall that lists rigid particles must not be skipped beside a body with no fluid
+      // near: its Dirichlet mirror would have nothing to average and fall back to the wall
+      // value, so the body drew about twice the flux (Conduction.SolidSlabOnADirichletWallErfc).
+      const std::uint8_t wanted = wall_rigid ? 3 : 1;
       bool any = false;
       for (int k = 0; k < kRows && !any; ++k)
         for (int d = 0; d < 5 && !any; ++d)
-          any = cell_fluid_[static_cast<std::size_t>(ci + rows[k] + d)] > 0;
+          any = (cell_kinds_[static_cast<std::size_t>(ci + rows[k] + d)] & wanted) != 0;
       if (!any) {
         start_[i + 1] = fluid_end_[i] = static_cast<std::uint32_t>(pairs_);
         contact_start_[i + 1] = static_cast<std::uint32_t>(contact_nbr_.size());

@@ -56,9 +56,9 @@ class NeighborList {
     return (nbr_.capacity() + start_.capacity() + contact_nbr_.capacity() +
             contact_start_.capacity() + fluid_end_.capacity() + others_.capacity()) *
                sizeof(std::uint32_t) +
-           (cell_start_.capacity() + cell_items_.capacity() + cell_of_.capacity() +
-            cell_fluid_.capacity()) *
-               sizeof(std::uint32_t);
+           (cell_start_.capacity() + cell_items_.capacity() + cell_of_.capacity()) *
+               sizeof(std::uint32_t) +
+           cell_kinds_.capacity();
   }
 
   // Calls fn(j) for every particle (owned or ghost) in the 3^D cells around the global cell
@@ -83,7 +83,8 @@ class NeighborList {
   CellBox<D> box_;
   ICoord<D> dims_{};              // half cells of box_ along each axis
   Vec<D> half_ = Vec<D>::Zero();  // half-cell size
-  std::vector<std::uint32_t> cell_start_, cell_items_, cell_of_, cell_fluid_;
+  std::vector<std::uint32_t> cell_start_, cell_items_, cell_of_;
+  std::vector<std::uint8_t> cell_kinds_;
   std::vector<std::uint32_t> start_, fluid_end_, others_;
   std::vector<std::uint32_t> nbr_;  // storage; the first pairs_ entries are the lists
   std::size_t pairs_ = 0;

@@ -136,6 +136,27 @@ TEST(Conduction, SemiInfiniteSlabErfc) {
   EXPECT_GT(order(dxs, errors), 1.5);  // second order (measured 2.13)
 }
 
+// The same erfc profile inside a fixed solid body lying on the hot wall, with no fluid near:
+// the wall's Dirichlet mirror then averages the body's particles alone. (Wall particles whose
+// neighbourhood held no fluid once got no neighbour list, so their mirror fell back to T_D
+// and the body drew about half the flux: error 3.0e-2 at dx = 0.01, first order.)
+TEST(Conduction, SolidSlabOnADirichletWallErfc) {
+  const double t_end = 0.01;
+  auto exact = [&](double x, double t) { return std::erfc(x / (2 * std::sqrt(t))); };
+  const std::vector<double> dxs = {0.02, 0.01};
+  const std::vector<double> errors = errors_over(dxs, 0, 1, R"(
+      materials { name: "s" phase: SOLID density: 1 heat_capacity: 1 thermal_conductivity: 1 }
+      bodies { name: "slab" material: "s" motion_type: FIXED shape { box { lo { x: 0 y: 0 } hi { x: 1 y: 1 } } } initial_temperature: 0 }
+      walls { name: "hot" shape { box { lo { x: -1 y: 0 } hi { x: 0 y: 1 } } } temperature { value { constant: 1 } } }
+      walls { name: "far" shape { box { lo { x: 1 y: 0 } hi { x: 2 y: 1 } } } }
+      thermal { initial_temperature: 0 }
+      time { fixed_dt: 5e-6 end_time: )" + num(t_end) + R"( })",
+                                                 "conduction_solid_slab", "temperature", exact);
+  report_order("Solid slab on a wall at T = 1, t = 0.01, max |T - erfc(x/2sqrt(t))|", dxs, errors);
+  EXPECT_LT(errors.back(), 1e-3);
+  EXPECT_GT(order(dxs, errors), 1.5);
+}
+
 TEST(Conduction, ContactTemperatureOfTwoMaterials) {
   // Fluid (k = 1, rho c = 1, T = 1) for x < 0 against a fixed rigid block (k = 4, rho c = 1,
   // T = 0) for x > 0: effusivities 1 and 2, contact temperature 1/3.
