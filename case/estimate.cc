@@ -46,6 +46,17 @@ double kernel_support_radius(const v1::Case& c) {
   return kernel_support_factor(c) * smoothing_length(c);
 }
 
+double neighbor_skin(const v1::Case& c) {
+  if (c.open_boundaries_size() > 0) return 0.0;
+  double skin = (c.has_neighbor_skin() ? c.neighbor_skin() : 0.3) * c.dx();
+  const auto& lo = c.domain().lo();
+  const auto& hi = c.domain().hi();
+  double narrowest = std::min(hi.x() - lo.x(), hi.y() - lo.y());
+  if (c.dimension() == 3) narrowest = std::min(narrowest, hi.z() - lo.z());
+  skin = std::min(skin, 0.5 * narrowest - kernel_support_radius(c));
+  return std::max(skin, 0.0);
+}
+
 double default_shell_thickness(const v1::Case& c) {
   return std::ceil(kernel_support_radius(c) / c.dx() - 1e-9) * c.dx();
 }
@@ -123,7 +134,9 @@ CaseEstimate estimate_case(const v1::Case& c) {
   const double k = rc_over_dx;
   const double neighbours =
       d == 2 ? std::numbers::pi * k * k : 4.0 / 3.0 * std::numbers::pi * k * k * k;
-  const double per_pair = c.pair_kernel_storage() == v1::PAIR_KERNEL_STREAM ? 4.0 : 28.0;
+  double per_pair = c.pair_kernel_storage() == v1::PAIR_KERNEL_STREAM ? 4.0 : 28.0;
+  // With a Verlet skin the candidates within r_c + skin are kept too (4 bytes each).
+  per_pair += 4.0 * std::pow(1.0 + neighbor_skin(c) / kernel_support_radius(c), d);
   const double per_particle = (d == 2 ? 200.0 : 280.0) + per_pair * neighbours;
   e.bytes = 1.15 * e.total() * per_particle;
   return e;

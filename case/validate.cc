@@ -70,6 +70,9 @@ class Validator {
         !(c_.smoothing_length_ratio() >= 1.0 && c_.smoothing_length_ratio() <= 4.0))
       error("smoothing_length_ratio",
             "must be between 1 and 4 (got " + num(c_.smoothing_length_ratio()) + ")");
+    if (c_.has_neighbor_skin() && !(c_.neighbor_skin() >= 0.0 && c_.neighbor_skin() <= 2.0))
+      error("neighbor_skin",
+            "must be between 0 and 2 (times dx; got " + num(c_.neighbor_skin()) + ")");
     if (!c_.has_domain()) {
       error("domain", "is required (the bounding box of the computational domain)");
     } else {

@@ -135,6 +135,8 @@ int run_local(int argc, char** argv) {
                 static_cast<long long>(r.steps), r.time, r.wall_seconds,
                 r.message.empty() ? "" : ": ", r.message.c_str());
     for (const auto& f : r.files) std::printf("  wrote %s\n", f.c_str());
+    std::printf("  neighbour searches: %lld in %lld steps since t = 0\n",
+                static_cast<long long>(r.neighbor_searches), static_cast<long long>(r.steps));
     double total = 0;
     for (const auto& [unit, sec] : r.unit_seconds) total += sec;
     if (total > 0) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace sph {
 
@@ -10,6 +11,78 @@ template <int D>
 void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
                             const CellBox<D>& box, double rc, const ContactQuery* contact,
                             bool rigid_all) {
+  build_into(cur_, s, grid, box, rc, contact, rigid_all);
+}
+
+template <int D>
+void NeighborList<D>::build_candidates(const ParticleStore<D>& s, const CellGrid<D>& grid,
+                                       const CellBox<D>& box, double rc, double skin,
+                                       const ContactQuery* contact, bool rigid_all) {
+  if (!contact) {
+    build_into(cand_, s, grid, box, rc + skin, nullptr, rigid_all);
+    return;
+  }
+  ContactQuery wider = *contact;
+  wider.range += skin;
+  build_into(cand_, s, grid, box, rc + skin, &wider, rigid_all);
+}
+
+template <int D>
+void NeighborList<D>::refine(const ParticleStore<D>& s, double rc, double contact_range) {
+  ++generation_;
+  const std::size_t owned = s.owned();
+  if (cand_.start.size() != owned + 1)
+    throw std::logic_error("neighbour candidates are of other particles: build them again");
+  Lists& o = cur_;
+  o.start.resize(owned + 1);
+  o.fluid_end.resize(owned);
+  o.contact_start.resize(owned + 1);
+  if (o.nbr.size() < cand_.pairs) o.nbr.resize(cand_.pairs + cand_.pairs / 4);
+  if (o.contact_nbr.size() < cand_.contact_nbr.size())
+    o.contact_nbr.resize(cand_.contact_nbr.size());
+  const Vec<D>* x = s.x.data();
+  const double rc2 = rc * rc, cr2 = contact_range * contact_range;
+  const std::uint32_t* cand = cand_.nbr.data();
+  std::uint32_t* out = o.nbr.data();
+  std::size_t m = 0, mc = 0;
+  double min_contact = std::numeric_limits<double>::infinity();
+  o.start[0] = 0;
+  o.contact_start[0] = 0;
+  for (std::size_t i = 0; i < owned; ++i) {
+    const Vec<D> xi = x[i];
+    // Branch-free, as in the search: every candidate is written, the count advances for the
+    // pairs kept. The fluid neighbours stay first.
+    const std::uint32_t f = cand_.fluid_end[i], e = cand_.start[i + 1];
+    for (std::uint32_t q = cand_.start[i]; q < f; ++q) {
+      const std::uint32_t j = cand[q];
+      out[m] = j;
+      m += static_cast<std::size_t>((xi - x[j]).squaredNorm() < rc2);
+    }
+    o.fluid_end[i] = static_cast<std::uint32_t>(m);
+    for (std::uint32_t q = f; q < e; ++q) {
+      const std::uint32_t j = cand[q];
+      out[m] = j;
+      m += static_cast<std::size_t>((xi - x[j]).squaredNorm() < rc2);
+    }
+    o.start[i + 1] = static_cast<std::uint32_t>(m);
+    for (std::uint32_t q = cand_.contact_start[i]; q < cand_.contact_start[i + 1]; ++q) {
+      const std::uint32_t j = cand_.contact_nbr[q];
+      const double r2 = (xi - x[j]).squaredNorm();
+      if (r2 < cr2) {
+        o.contact_nbr[mc++] = j;
+        min_contact = std::min(min_contact, std::sqrt(r2));
+      }
+    }
+    o.contact_start[i + 1] = static_cast<std::uint32_t>(mc);
+  }
+  o.pairs = m;
+  o.min_contact = min_contact;
+}
+
+template <int D>
+void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const CellGrid<D>& grid,
+                                 const CellBox<D>& box, double rc, const ContactQuery* contact,
+                                 bool rigid_all) {
   box_ = box;
   ++generation_;
   // Half cells: the box's cells split in two along every axis. The 5^D half cells around a
@@ -92,13 +165,13 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
   const double rc2 = rc * rc;
   const double cr2 = contact ? contact->range * contact->range : 0.0;
   const std::size_t owned = s.owned();
-  start_.resize(owned + 1);
-  fluid_end_.resize(owned);
-  pairs_ = 0;
-  start_[0] = 0;
-  contact_start_.assign(owned + 1, 0);
-  contact_nbr_.clear();
-  min_contact_ = std::numeric_limits<double>::infinity();
+  L.start.resize(owned + 1);
+  L.fluid_end.resize(owned);
+  L.pairs = 0;
+  L.start[0] = 0;
+  L.contact_start.assign(owned + 1, 0);
+  L.contact_nbr.clear();
+  L.min_contact = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < owned; ++i) {
     const long long ci = cell_of_[i];
     const bool fluid = kind[i] == Kind::kFluid;
@@ -118,8 +191,8 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
         for (int d = 0; d < 5 && !any; ++d)
           any = (cell_kinds_[static_cast<std::size_t>(ci + rows[k] + d)] & wanted) != 0;
       if (!any) {
-        start_[i + 1] = fluid_end_[i] = static_cast<std::uint32_t>(pairs_);
-        contact_start_[i + 1] = static_cast<std::uint32_t>(contact_nbr_.size());
+        L.start[i + 1] = L.fluid_end[i] = static_cast<std::uint32_t>(L.pairs);
+        L.contact_start[i + 1] = static_cast<std::uint32_t>(L.contact_nbr.size());
         continue;
       }
     }
@@ -164,14 +237,14 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
       row_end[k] = cell_start_[static_cast<std::size_t>(c + last + 1)];
       candidates += row_end[k] - row_begin[k];
     }
-    if (nbr_.size() < pairs_ + candidates)
-      nbr_.resize(std::max(nbr_.size() + nbr_.size() / 4, pairs_ + candidates));  // 25% spare
+    if (L.nbr.size() < L.pairs + candidates)
+      L.nbr.resize(std::max(L.nbr.size() + L.nbr.size() / 4, L.pairs + candidates));  // 25% spare
     if (others_.size() < candidates) others_.resize(candidates);
     // Branch-free appends: every candidate is written and the counts advance only for the
     // neighbours kept (a data-dependent branch here mispredicts often once the particles are
     // disordered). Fluid particles keep all neighbours in `out`; the others keep fluid ones
     // there and, as required, rigid or all non-fluid ones in `other`, which follow.
-    std::uint32_t* out = nbr_.data() + pairs_;
+    std::uint32_t* out = L.nbr.data() + L.pairs;
     std::uint32_t* other = others_.data();
     std::size_t m = 0, o = 0;
     const std::uint32_t self = static_cast<std::uint32_t>(i);
@@ -200,18 +273,18 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
         if (contacts && kj != Kind::kFluid && j != self && r2 < cr2 &&
             ((kj == Kind::kRigid && contact->body[j] != contact->body[i]) ||
              (kj == Kind::kWall && contact->walls))) {
-          contact_nbr_.push_back(j);
-          min_contact_ = std::min(min_contact_, std::sqrt(r2));
+          L.contact_nbr.push_back(j);
+          L.min_contact = std::min(L.min_contact, std::sqrt(r2));
         }
       }
     }
     // Non-fluid particles: fluid neighbours first (the wall condition stops there).
-    pairs_ += m;
-    fluid_end_[i] = static_cast<std::uint32_t>(pairs_);
+    L.pairs += m;
+    L.fluid_end[i] = static_cast<std::uint32_t>(L.pairs);
     std::copy(other, other + o, out + m);
-    pairs_ += o;
-    start_[i + 1] = static_cast<std::uint32_t>(pairs_);
-    contact_start_[i + 1] = static_cast<std::uint32_t>(contact_nbr_.size());
+    L.pairs += o;
+    L.start[i + 1] = static_cast<std::uint32_t>(L.pairs);
+    L.contact_start[i + 1] = static_cast<std::uint32_t>(L.contact_nbr.size());
   }
 }
 

@@ -32,30 +32,44 @@ class NeighborList {
   // particles their rigid neighbours after those (the Dirichlet mirror of conduction).
   void build(const ParticleStore<D>& s, const CellGrid<D>& grid, const CellBox<D>& box, double rc,
              const ContactQuery* contact = nullptr, bool rigid_all = false);
+  // Verlet lists: as build(), but keeps the pairs within rc + skin (contact candidates within
+  // their range + skin) as candidates, in the canonical order of the positions now. refine()
+  // then makes the lists of a later step from them. The grid's cells must be at least
+  // rc + skin wide.
+  void build_candidates(const ParticleStore<D>& s, const CellGrid<D>& grid, const CellBox<D>& box,
+                        double rc, double skin, const ContactQuery* contact = nullptr,
+                        bool rigid_all = false);
+  // The lists of the current positions: the candidates within rc (contacts within
+  // contact_range), in the candidates' order. Exact while no particle has moved half the skin
+  // since build_candidates(), and the particles (owned and ghosts) are the same, in the same
+  // rows.
+  void refine(const ParticleStore<D>& s, double rc, double contact_range);
 
-  const std::uint32_t* begin(std::size_t i) const { return nbr_.data() + start_[i]; }
+  const std::uint32_t* begin(std::size_t i) const { return cur_.nbr.data() + cur_.start[i]; }
   // Position of particle i's list in the storage (tables parallel to the lists use it).
-  std::size_t first(std::size_t i) const { return start_[i]; }
-  // Counts the builds, so a table made from one list can tell it is stale.
+  std::size_t first(std::size_t i) const { return cur_.start[i]; }
+  // Counts the builds and refinements, so a table made from one list can tell it is stale.
   std::uint64_t generation() const { return generation_; }
-  const std::uint32_t* end(std::size_t i) const { return nbr_.data() + start_[i + 1]; }
+  const std::uint32_t* end(std::size_t i) const { return cur_.nbr.data() + cur_.start[i + 1]; }
   // For wall and rigid particles: the end of the fluid neighbours, which come first.
-  const std::uint32_t* fluid_end(std::size_t i) const { return nbr_.data() + fluid_end_[i]; }
-  std::size_t pairs() const { return pairs_; }
+  const std::uint32_t* fluid_end(std::size_t i) const {
+    return cur_.nbr.data() + cur_.fluid_end[i];
+  }
+  std::size_t pairs() const { return cur_.pairs; }
   // Contact candidates of owned rigid particle i (empty without a ContactQuery).
   const std::uint32_t* contacts_begin(std::size_t i) const {
-    return contact_nbr_.data() + contact_start_[i];
+    return cur_.contact_nbr.data() + cur_.contact_start[i];
   }
   const std::uint32_t* contacts_end(std::size_t i) const {
-    return contact_nbr_.data() + contact_start_[i + 1];
+    return cur_.contact_nbr.data() + cur_.contact_start[i + 1];
   }
-  std::size_t contact_pairs() const { return contact_nbr_.size(); }
+  std::size_t contact_pairs() const {
+    return cur_.contact_start.empty() ? 0 : cur_.contact_start.back();
+  }
   // Smallest distance between contact candidates on this rank (infinity if none).
-  double min_contact_distance() const { return min_contact_; }
+  double min_contact_distance() const { return cur_.min_contact; }
   std::size_t bytes() const {
-    return (nbr_.capacity() + start_.capacity() + contact_nbr_.capacity() +
-            contact_start_.capacity() + fluid_end_.capacity() + others_.capacity()) *
-               sizeof(std::uint32_t) +
+    return cur_.bytes() + cand_.bytes() + others_.capacity() * sizeof(std::uint32_t) +
            (cell_start_.capacity() + cell_items_.capacity() + cell_of_.capacity()) *
                sizeof(std::uint32_t) +
            cell_kinds_.capacity();
@@ -80,17 +94,32 @@ class NeighborList {
   }
 
  private:
+  // Neighbour lists in CSR form: per owned particle its pairs (fluid ones first), and its
+  // contact candidates.
+  struct Lists {
+    std::vector<std::uint32_t> start, fluid_end;
+    std::vector<std::uint32_t> nbr;  // storage; the first `pairs` entries are the lists
+    std::vector<std::uint32_t> contact_start, contact_nbr;
+    std::size_t pairs = 0;
+    double min_contact = 0;
+    std::size_t bytes() const {
+      return (start.capacity() + fluid_end.capacity() + nbr.capacity() + contact_start.capacity() +
+              contact_nbr.capacity()) *
+             sizeof(std::uint32_t);
+    }
+  };
+  void build_into(Lists& out, const ParticleStore<D>& s, const CellGrid<D>& grid,
+                  const CellBox<D>& box, double rc, const ContactQuery* contact, bool rigid_all);
+
   CellBox<D> box_;
   ICoord<D> dims_{};              // half cells of box_ along each axis
   Vec<D> half_ = Vec<D>::Zero();  // half-cell size
   std::vector<std::uint32_t> cell_start_, cell_items_, cell_of_;
   std::vector<std::uint8_t> cell_kinds_;
-  std::vector<std::uint32_t> start_, fluid_end_, others_;
-  std::vector<std::uint32_t> nbr_;  // storage; the first pairs_ entries are the lists
-  std::size_t pairs_ = 0;
+  std::vector<std::uint32_t> others_;
+  Lists cur_;   // the lists the passes read
+  Lists cand_;  // Verlet candidates (build_candidates)
   std::uint64_t generation_ = 0;
-  std::vector<std::uint32_t> contact_start_, contact_nbr_;
-  double min_contact_ = 0;
 };
 
 // The owned particles (all inside `box`) ordered by (cell, id): the memory order that keeps

@@ -240,6 +240,16 @@ void Halo<D>::update(ParticleStore<D>& s, std::initializer_list<ColumnBase*> lis
 }
 
 template <int D>
+void Halo<D>::refresh_ghosts(ParticleStore<D>& s) {
+  std::vector<ColumnBase*> cols;
+  for (const auto& c : s.columns())
+    if (c->ghost()) cols.push_back(c.get());
+  pack(s, cols, true);
+  exchange();
+  unpack(cols, s.owned());
+}
+
+template <int D>
 std::vector<std::vector<std::byte>> Halo<D>::exchange_bytes(
     const std::vector<std::vector<std::byte>>& send) {
   send_buf_ = send;

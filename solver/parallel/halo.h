@@ -38,6 +38,10 @@ class Halo {
   void build_ghosts(ParticleStore<D>& s);
   // Refreshes the listed columns of the ghosts made by the last build_ghosts().
   void update(ParticleStore<D>& s, std::initializer_list<ColumnBase*> cols);
+  // Sends all `ghost` columns again to the ghosts of the last build_ghosts() (positions shifted
+  // as then): the same ghosts, in the same rows, with the owners' state now. Between two
+  // searches of a Verlet list the ghosts must stay those the candidates were listed among.
+  void refresh_ghosts(ParticleStore<D>& s);
 
   // Ids of the particles the last migrate() sent away, per destination rank (state kept by
   // units outside the particle columns, such as contact histories, follows them).

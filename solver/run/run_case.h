@@ -50,6 +50,9 @@ struct RunOutcome {
   std::map<std::string, double> unit_seconds;
   // Per-particle storage (and neighbour lists) by the unit that owns it, all ranks [bytes].
   std::map<std::string, double> unit_bytes;
+  // Fresh neighbour searches since t = 0 (every step without a Verlet skin; the steps between
+  // keep the candidates of the last one).
+  std::int64_t neighbor_searches = 0;
 };
 
 struct RunOptions {

@@ -63,6 +63,8 @@ class Simulation {
   // Access for tests and benchmarks.
   ParticleStore<D>& particles() { return s_; }
   const std::map<std::string, double>& unit_seconds() const { return timers_; }
+  // Fresh neighbour searches so far (with a Verlet skin, fewer than the steps).
+  std::int64_t neighbor_searches() const { return searches_; }
   // Builds (or resumes) the run; then step() advances one checked step: the time step for
   // the next step is set, the decomposition rebalanced and memory reordered as needed.
   void start();
@@ -104,7 +106,21 @@ class Simulation {
   void build_units();
   void decompose_by_histogram();
   void prime();
-  void exchange_and_search();
+  // How exchange_and_search() finds the neighbours:
+  //  - kFresh: particles to their owners, ghosts and lists anew at the positions now;
+  //  - kAsNeeded: with a Verlet skin, the ghosts refreshed and the lists refined from the
+  //    candidates while no particle has moved half the skin since the last search; else kFresh;
+  //  - kAtReference: ghosts and candidates anew at the positions of the last search, lists
+  //    refined at the positions now: after a resume or a rebalance, which must not change
+  //    which pairs are listed or their order (an uninterrupted run on any rank count keeps
+  //    the candidates it has).
+  enum class Search { kFresh, kAsNeeded, kAtReference };
+  void exchange_and_search(Search mode = Search::kFresh);
+  // Whether some particle has moved half the skin since the last search (collective). First
+  // brings positions that a prescribed motion carried whole periods away back to within a
+  // period of where they were searched.
+  bool moved_half_the_skin();
+  void search_candidates();
   void compute_density_and_pressure(double dt);
   void apply_wall_condition();
   void compute_forces();
@@ -152,7 +168,9 @@ class Simulation {
   RunOptions opt_;
   std::vector<MaterialParams> mats_;
   std::vector<FluidConstants> fluids_;
-  double dx_, h_, rc_, wall_volume_;
+  double dx_, h_, rc_;
+  double skin_;  // Verlet skin of the neighbour search (0: searched every step)
+  double wall_volume_;
   K kernel_;
   CellGrid<D> grid_;
   Halo<D> halo_;
@@ -219,6 +237,11 @@ class Simulation {
   double solid_fraction_ = 0;  // largest fluid solid fraction after the last step
   bool phases_ = false;        // two or more fluid materials: the interface is watched
   double min_contact_distance_ = std::numeric_limits<double>::infinity();
+  // Positions of the owned particles at the last search (with a skin; persistent, so a resume
+  // lists the same candidates).
+  Column<Vec<D>>* searched_at_ = nullptr;
+  std::int64_t searches_ = 0;        // fresh searches since t = 0 (not a rebalance's or resume's)
+  std::int64_t reordered_at_ = -25;  // step of the last memory reordering
 };
 
 }  // namespace sph

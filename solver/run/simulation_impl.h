@@ -37,9 +37,11 @@ Simulation<D, K>::Simulation(const v1::Case& c, const Comm& comm, const RunOptio
       dx_(c.dx()),
       h_(smoothing_length(c)),  // h = dx by default (Fuchs 2021 Remark 8)
       rc_(K::kSupport * h_),
+      skin_(neighbor_skin(c)),
       wall_volume_(std::pow(c.dx(), D)),
       kernel_(h_),
-      grid_(detail::to_vec<D>(c.domain().lo()), detail::to_vec<D>(c.domain().hi()), rc_,
+      // Cells hold every candidate of a Verlet list within the 3^D around a particle.
+      grid_(detail::to_vec<D>(c.domain().lo()), detail::to_vec<D>(c.domain().hi()), rc_ + skin_,
             [&] {
               std::array<bool, D> p{};
               p[0] = c.periodic_x();
@@ -69,6 +71,12 @@ void Simulation<D, K>::build_units() {
   const auto& fm = c_.fluid_model();
   units_.push_back("halo_exchange");
   units_.push_back("neighbor_search");
+  if (skin_ > 0) {
+    searched_at_ = &s_.template add<Vec<D>>("searched_at", "neighbor_search", true);
+    searched_at_->set_ghost(false);
+    // Checkpoints of code before the skin lack it; start() then searches afresh.
+    searched_at_->set_zero_if_absent(true);
+  }
   units_.push_back("pair_kernel");
   if (fm.density() == v1::CONTINUITY) {
     units_.push_back(ContinuityDensity<D, K>::kName);
@@ -189,7 +197,7 @@ void Simulation<D, K>::build_units() {
   // Series in the result file.
   for (const char* n :
        {"time", "step", "dt", "mass", "kinetic_energy", "potential_energy", "elastic_energy",
-        "max_density_deviation", "max_speed", "imbalance", "fluid_particles"})
+        "max_density_deviation", "max_speed", "imbalance", "fluid_particles", "neighbor_searches"})
     result_.add_series(std::string("diagnostics/") + n);
   result_.add_series("diagnostics/momentum", {static_cast<std::uint64_t>(D)});
   result_.add_series("diagnostics/max_density_deviation_at", {static_cast<std::uint64_t>(D)});
@@ -571,26 +579,87 @@ void Simulation<D, K>::build_scene() {
 }
 
 template <int D, class K>
-void Simulation<D, K>::exchange_and_search() {
-  {
-    Timer tm(timer("halo_exchange"));
-    migrate();
-    // Keep owned particles in cell order so neighbours are close in memory.
-    if (step_ % 25 == 0) s_.reorder_owned(owned_cell_order(s_, grid_, halo_.my_box()));
-    halo_.build_ghosts(s_);
-  }
-  {
+void Simulation<D, K>::exchange_and_search(Search mode) {
+  // Counted: searches that every rank count makes alike (not a rebalance's or a resume's).
+  const bool counted = mode != Search::kAtReference;
+  if (skin_ == 0) mode = Search::kFresh;  // the lists of the positions now are all there is
+  if (mode == Search::kAsNeeded) {
     Timer tm(timer("neighbor_search"));
-    if (contact_) {
-      ContactQuery q{bodies_->body_index().data(), contact_->candidate_range(),
-                     contact_->with_walls()};
-      nl_.build(s_, grid_, halo_.ghost_box(), rc_, &q, rigid_all());
-    } else {
-      nl_.build(s_, grid_, halo_.ghost_box(), rc_, nullptr, rigid_all());
+    mode = moved_half_the_skin() ? Search::kFresh : Search::kAsNeeded;
+  }
+  if (mode == Search::kFresh) {
+    {
+      Timer tm(timer("halo_exchange"));
+      migrate();
+      // Keep owned particles in cell order so neighbours are close in memory.
+      if (step_ - reordered_at_ >= 25) {
+        s_.reorder_owned(owned_cell_order(s_, grid_, halo_.my_box()));
+        reordered_at_ = step_;
+      }
+      if (searched_at_) std::copy(s_.x.data(), s_.x.data() + s_.owned(), searched_at_->data());
+      halo_.build_ghosts(s_);
     }
+    if (counted) ++searches_;
+    search_candidates();
+  } else if (mode == Search::kAtReference) {
+    // Ghosts and candidates as the last search made them: everything placed by the positions
+    // it searched at, then the positions now refreshed on the ghosts.
+    auto swap_positions = [&] {
+      for (std::size_t i = 0; i < s_.owned(); ++i) std::swap(s_.x[i], (*searched_at_)[i]);
+    };
+    {
+      Timer tm(timer("halo_exchange"));
+      swap_positions();
+      migrate();
+      halo_.build_ghosts(s_);
+    }
+    search_candidates();
+    Timer tm(timer("halo_exchange"));
+    swap_positions();
+    halo_.refresh_ghosts(s_);
+  } else {
+    Timer tm(timer("halo_exchange"));
+    halo_.refresh_ghosts(s_);
+  }
+  if (skin_ > 0) {
+    Timer tm(timer("neighbor_search"));
+    nl_.refine(s_, rc_, contact_ ? contact_->candidate_range() : 0.0);
   }
   Timer tm(timer("pair_kernel"));
   pk_.prepare(s_, nl_, kernel_);
+}
+
+// The lists (without a skin) or the Verlet candidates of the positions in s_.x.
+template <int D, class K>
+void Simulation<D, K>::search_candidates() {
+  Timer tm(timer("neighbor_search"));
+  ContactQuery q;
+  if (contact_)
+    q = ContactQuery{bodies_->body_index().data(), contact_->candidate_range(),
+                     contact_->with_walls()};
+  const ContactQuery* query = contact_ ? &q : nullptr;
+  if (skin_ > 0)
+    nl_.build_candidates(s_, grid_, halo_.ghost_box(), rc_, skin_, query, rigid_all());
+  else
+    nl_.build(s_, grid_, halo_.ghost_box(), rc_, query, rigid_all());
+}
+
+template <int D, class K>
+bool Simulation<D, K>::moved_half_the_skin() {
+  double largest = 0;
+  for (std::size_t i = 0; i < s_.owned(); ++i) {
+    Vec<D> d = s_.x[i] - (*searched_at_)[i];
+    for (int a = 0; a < D; ++a) {
+      // A wall moved by a prescribed motion (or a body placed from its centre) may be whole
+      // periods from where it was searched; its ghosts were sent as images of that place.
+      if (!grid_.periodic[a] || !(std::abs(d[a]) > 0.5 * grid_.length[a])) continue;
+      const double shift = std::round(d[a] / grid_.length[a]) * grid_.length[a];
+      s_.x[i][a] -= shift;
+      d[a] -= shift;
+    }
+    largest = std::max(largest, d.squaredNorm());
+  }
+  return comm_.max(largest) >= 0.25 * skin_ * skin_;
 }
 
 template <int D, class K>
@@ -734,7 +803,7 @@ std::string Simulation<D, K>::integrate_step(double dt) {
         if (std::string why = regroup_bodies_that_left(); !why.empty()) return why;
     }
   }
-  exchange_and_search();
+  exchange_and_search(Search::kAsNeeded);
   if (bodies_left && contact_) {
     // As after a phase transition: the rebuilt bodies' contact forces for the next step.
     Timer tc(timer(SpringDashpotContact<D>::kName));
@@ -885,6 +954,7 @@ void Simulation<D, K>::sample_series() {
   put("max_speed", vmax);
   put("imbalance", imbalance_);
   put("fluid_particles", cs.fluid_particles);
+  put("neighbor_searches", static_cast<double>(searches_));
   if (walls_) put("max_solid_fraction", solid_fraction_);
   if (contact_) put("min_contact_distance", min_contact_distance_);
   if (phases_) {
@@ -1016,6 +1086,8 @@ std::string Simulation<D, K>::write_checkpoint_now() {
                            {"dt0", dt0_},
                            {"next_series", next_series_},
                            {"contact_possible", contact_possible_ ? 1.0 : 0.0}};
+  if (searched_at_) state["searched_at"] = 1.0;  // the particles carry the positions searched at
+  state["neighbor_searches"] = static_cast<double>(searches_);
   if (bodies_) bodies_->save(state);
   if (contact_) contact_->save(state, comm_);
   if (open_) open_->save(state);
@@ -1082,7 +1154,8 @@ std::map<std::string, std::string> Simulation<D, K>::metadata(const std::string&
   m["ranks"] = std::to_string(comm_.size());
   m["dimension"] = std::to_string(D);
   // The shortest text that reads back as the value (to_string would print 2.5e-6 as 0.000003).
-  for (const auto& [key, value] : {std::pair<const char*, double>{"dx", dx_}, {"h", h_}}) {
+  for (const auto& [key, value] :
+       {std::pair<const char*, double>{"dx", dx_}, {"h", h_}, {"neighbor_skin", skin_}}) {
     char buf[32];
     const auto end = std::to_chars(buf, buf + sizeof buf, value).ptr;
     m[key] = std::string(buf, end);
@@ -1117,8 +1190,9 @@ void Simulation<D, K>::maybe_rebalance() {
       decompose_by_histogram();
     }
     // Migration reorders the owned rows and the ghosts change: the next step's contact drift
-    // and the probes read the neighbour list before that step searches again.
-    exchange_and_search();
+    // and the probes read the neighbour list before that step searches again. The pairs and
+    // their order stay those of the last search, whatever the decomposition.
+    exchange_and_search(Search::kAtReference);
     imbalance_ = imbalance();
   }
 }
@@ -1188,6 +1262,8 @@ void Simulation<D, K>::start() {
       next_series_ = state_value(state, "next_series");
       contact_possible_ =
           state.count("contact_possible") && state_value(state, "contact_possible") > 0;
+      if (state.count("neighbor_searches"))
+        searches_ = static_cast<std::int64_t>(state_value(state, "neighbor_searches"));
       // A unit the checkpoint ran with but the case lacks (or the reverse) would leave its
       // particles to units that do not know them, e.g. rigid particles with no body.
       const auto expect = [&state](bool in_case, const char* key, const char* what) {
@@ -1206,12 +1282,17 @@ void Simulation<D, K>::start() {
       throw std::runtime_error("resuming from " + opt_.resume_from + ": " + e.what());
     }
     decompose_by_histogram();
-    migrate();
+    // The first step's contact drift reads the neighbour list of the checkpointed positions
+    // (an uninterrupted run has it from the previous step), and with a skin the first step
+    // keeps the candidates of the search before the checkpoint (or searches again) as the
+    // uninterrupted run does.
+    if (searched_at_ && state.count("searched_at") == 0) {
+      // A checkpoint of code before the skin: search afresh here.
+      std::copy(s_.x.data(), s_.x.data() + s_.owned(), searched_at_->data());
+    }
+    exchange_and_search(Search::kAtReference);
     if (contact_) {
       contact_->prune_history();  // ... and keeps those of its particles
-      // The first step's contact drift reads the neighbour list of the checkpointed positions
-      // (an uninterrupted run has it from the previous step).
-      exchange_and_search();
       min_contact_distance_ = comm_.min(nl_.min_contact_distance());
     }
     global_particles_ = comm_.sum(static_cast<std::int64_t>(s_.owned()));
@@ -1367,6 +1448,7 @@ RunOutcome Simulation<D, K>::run() {
     mem += (mem.empty() ? "" : ",") + k + "=" + std::to_string(static_cast<long long>(b));
   meta["unit_seconds"] = times;
   meta["unit_bytes"] = mem;
+  meta["neighbor_searches"] = std::to_string(searches_);
   result_.flush();
   result_.set_meta(meta);
   out.unit_bytes = bytes;
@@ -1376,6 +1458,7 @@ RunOutcome Simulation<D, K>::run() {
   out.time = t_;
   out.wall_seconds = MPI_Wtime() - wall_start_;
   out.unit_seconds = timers_;
+  out.neighbor_searches = searches_;
   out.last_checkpoint = last_checkpoint_;
   out.files = {std::filesystem::absolute(result_.h5_path()).string(),
                std::filesystem::absolute(result_.xmf_path()).string()};

@@ -628,5 +628,59 @@ TEST(RankConsistency, DamBreakRebalances) {
   EXPECT_LE(worst_late, 1.10);
 }
 
+// Verlet lists (neighbor_skin, 0.3 dx by default) change only the order of the sums: the dam
+// break with a skin agrees with searching every step to rounding, with far fewer searches.
+TEST(RankConsistency, VerletListsAgreeWithSearchingEveryStep) {
+  auto c = test::load_case("dambreak_2d");
+  c.set_dx(0.04);
+  c.mutable_time()->set_max_steps(1500);
+  c.mutable_output()->set_interval(0);
+  const std::string base = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_verlet_";
+  c.set_neighbor_skin(0);
+  const RunOutcome every = run_on(c, 1, base + "every_step");
+  ASSERT_EQ(every.status, RunStatus::kCompleted);
+  c.clear_neighbor_skin();
+  const RunOutcome skin = run_on(c, 2, base + "skin");
+  ASSERT_EQ(skin.status, RunStatus::kCompleted);
+  if (world_rank() != 0) return;
+  const double d = max_relative_difference(read_last(base + "every_step/result.h5"),
+                                           read_last(base + "skin/result.h5"));
+  std::printf(
+      "dam break, 1500 steps: %lld searches without a skin, %lld with 0.3 dx; max relative "
+      "difference %.3g\n",
+      static_cast<long long>(every.neighbor_searches),
+      static_cast<long long>(skin.neighbor_searches), d);
+  EXPECT_EQ(every.neighbor_searches, 1501);  // the start and every step
+  EXPECT_LT(skin.neighbor_searches, 1500 / 4);
+  EXPECT_GT(d, 0.0) << "the skin changed nothing: was it used?";
+  EXPECT_LT(d, 1e-9);
+}
+
+// A checkpoint between two searches: the resumed run, on any rank count, lists the candidates
+// of the search before the checkpoint (the particles carry where they were searched), refines
+// them as the uninterrupted run does and searches again at the same steps, so it ends with the
+// same bits.
+TEST(RankConsistency, VerletListsResumeBetweenSearchesOnAnyRankCount) {
+  auto c = test::load_case("dambreak_2d");
+  c.set_dx(0.04);
+  c.mutable_output()->set_series_interval(1e-12);  // every step
+  constexpr int kAt = 700;
+  check_resume("verlet", c, 1500, kAt);
+  if (world_rank() != 0) return;
+  const std::string dir = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_verlet_resume_";
+  test::ResultReader rr(dir + "reference/result.h5");
+  const auto step = rr.series("diagnostics/step");
+  const auto searches = rr.series("diagnostics/neighbor_searches");
+  const auto k = static_cast<std::size_t>(
+      std::find(step.begin(), step.end(), static_cast<double>(kAt)) - step.begin());
+  ASSERT_LT(k + 1, step.size()) << "no sample at the checkpoint's step";
+  EXPECT_EQ(searches[k], searches[k - 1]) << "step " << kAt << " searched: not between searches";
+  EXPECT_EQ(searches[k + 1], searches[k]) << "the step after the checkpoint searched";
+  for (int ranks : {4, 1}) {
+    test::ResultReader rs(dir + "resumed_" + std::to_string(ranks) + "/result.h5");
+    EXPECT_EQ(rs.series("diagnostics/neighbor_searches"), searches) << ranks << " ranks";
+  }
+}
+
 }  // namespace
 }  // namespace sph

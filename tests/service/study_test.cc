@@ -173,8 +173,11 @@ TEST(ServiceStudy, ACancelledStudyStopsAndKeepsTheReportOfItsFinishedLevels) {
   ServiceHarness h;
   h.start_server();
   auto pool = h.start_pool(2, {"--max-jobs", "1"});
+  // Level 3 (dx = 0.01, 10 000 steps) runs long enough for the cancel to find it running
+  // (at t = 0.03 it once finished first on two loaded cores: the slab at rest never searches
+  // its neighbours again).
   const std::string path = write_case(
-      h, "slab.textproto", with_end_time(read_test_case("tiny_conduction_2d.textproto"), 0.03));
+      h, "slab.textproto", with_end_time(read_test_case("tiny_conduction_2d.textproto"), 0.1));
   ASSERT_EQ(h.sphctl({"study", path, "--dx", "0.04,0.02,0.01"}).exit_code, 0);
   ASSERT_TRUE(h.wait_for_job("job-1", 120s, [](const v1::Job& j) {
     return j.has_progress() && j.progress().study().level() == 3 && j.progress().step() > 0;

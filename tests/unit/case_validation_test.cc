@@ -343,6 +343,25 @@ TEST(CaseValidation, SizeLimitNamesDx) {
   EXPECT_TRUE(has_error(errs, "dx", "case too large")) << dump(errs);
 }
 
+// The Verlet skin is given in units of dx, refused outside [0, 2] by name; it is 0.3 dx by
+// default, 0 with open boundaries, and no wider than leaves each axis two cells of r_c + skin.
+TEST(CaseValidation, NeighborSkin) {
+  EXPECT_TRUE(has_error(errors_of("neighbor_skin: -0.1"), "neighbor_skin",
+                        "between 0 and 2 (times dx; got -0.1)"));
+  EXPECT_TRUE(has_error(errors_of("neighbor_skin: 2.5"), "neighbor_skin", "between 0 and 2"));
+  EXPECT_TRUE(errors_of("neighbor_skin: 0").empty());
+  auto c = parse_case_text(kBase);
+  EXPECT_NEAR(neighbor_skin(c), 0.03, 1e-15);
+  c.set_neighbor_skin(1.5);
+  EXPECT_NEAR(neighbor_skin(c), 0.15, 1e-15);
+  c.set_neighbor_skin(2);  // r_c + skin = 0.5 would leave the 2 x 2 domain 4 cells: allowed
+  EXPECT_NEAR(neighbor_skin(c), 0.2, 1e-15);
+  c.mutable_domain()->mutable_hi()->set_y(0.9);  // 0.9 / 2 - r_c = 0.15
+  EXPECT_NEAR(neighbor_skin(c), 0.15, 1e-15);
+  c.add_open_boundaries();
+  EXPECT_EQ(neighbor_skin(c), 0.0);
+}
+
 // h = smoothing_length_ratio * dx: the support, the default wall shell, the time step and the
 // neighbour count follow h, and ratios outside [1, 4] are refused by name.
 TEST(CaseValidation, SmoothingLengthRatio) {

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <random>
 #include <set>
 
@@ -65,21 +67,51 @@ TEST(NeighborList, MatchesBruteForce3DPeriodicX) {
   check_against_brute_force<3>({true, false, false}, 3);
 }
 
-// Walls and rigid particles list their fluid neighbours first, then (with rigid_all) the
-// rigid ones (walls) or all non-fluid ones (rigid particles); rigid particles also get their
-// contact candidates (other bodies and walls within the contact range). No fluid lies beyond
-// x = 1, so the walls there have rigid neighbours and no fluid ones.
-TEST(NeighborList, MixedKindsMatchBruteForce) {
-  const double rc = 0.3, range = 0.12;
-  CellGrid<2> grid(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc, {false, false});
-  Comm comm(MPI_COMM_WORLD);
-  Halo<2> halo(grid, comm);
-  std::vector<std::int64_t> counts(static_cast<size_t>(grid.total()), 1);
-  halo.set_decomposition(Decomposition<2>(grid, 1, counts));
+// The lists of mixed kinds against brute force at the positions in s (minimum image along
+// periodic axes): walls and rigid particles list their fluid neighbours first, then (with
+// rigid_all) the rigid ones (walls) or all non-fluid ones (rigid particles); rigid particles
+// also get their contact candidates (other bodies and walls within the contact range).
+void expect_mixed_lists(const ParticleStore<2>& s, const NeighborList<2>& nl,
+                        const std::vector<std::int32_t>& body, double rc, double range,
+                        bool rigid_all, bool walls, const std::array<bool, 2>& periodic,
+                        double length) {
+  const std::size_t n = s.owned();
+  for (std::size_t i = 0; i < n; ++i) {
+    std::multiset<std::int64_t> fluid, rest, contacts;
+    for (std::size_t j = 0; j < n; ++j) {
+      Vec<2> d = s.x[i] - s.x[j];
+      for (int a = 0; a < 2; ++a)
+        if (periodic[static_cast<size_t>(a)]) d[a] -= length * std::round(d[a] / length);
+      const double r = d.norm();
+      if (j == i) continue;
+      const bool jf = s.kind[j] == Kind::kFluid;
+      if (r < rc && (jf || s.kind[i] == Kind::kFluid)) fluid.insert(s.id[j]);
+      if (r < rc && !jf && rigid_all &&
+          (s.kind[i] == Kind::kRigid || (s.kind[i] == Kind::kWall && s.kind[j] == Kind::kRigid)))
+        rest.insert(s.id[j]);
+      if (r < range && s.kind[i] == Kind::kRigid && !jf &&
+          ((s.kind[j] == Kind::kRigid && body[j] != body[i]) ||
+           (s.kind[j] == Kind::kWall && walls)))
+        contacts.insert(s.id[j]);
+    }
+    std::multiset<std::int64_t> got_fluid, got_rest, got_contacts;
+    for (const std::uint32_t* j = nl.begin(i); j != nl.fluid_end(i); ++j)
+      got_fluid.insert(s.id[*j]);
+    for (const std::uint32_t* j = nl.fluid_end(i); j != nl.end(i); ++j) got_rest.insert(s.id[*j]);
+    for (const std::uint32_t* j = nl.contacts_begin(i); j != nl.contacts_end(i); ++j)
+      got_contacts.insert(s.id[*j]);
+    ASSERT_EQ(got_fluid, fluid) << "particle " << i << " rigid_all " << rigid_all;
+    ASSERT_EQ(got_rest, rest) << "particle " << i << " rigid_all " << rigid_all;
+    ASSERT_EQ(got_contacts, contacts) << "particle " << i << " walls " << walls;
+  }
+}
+
+// 700 particles of mixed kinds on [0, 1.7]^2; body[i] is particle i's body (-1: none). No
+// fluid lies beyond x = 1, so the walls there have rigid neighbours and no fluid ones.
+void mixed_particles(ParticleStore<2>& s, std::vector<std::int32_t>& body) {
   const std::size_t n = 700;
-  ParticleStore<2> s;
   s.resize(n, n);
-  std::vector<std::int32_t> body(n, -1);
+  body.assign(n, -1);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0.0, 1.7);
   for (std::size_t i = 0; i < n; ++i) {
@@ -90,38 +122,81 @@ TEST(NeighborList, MixedKindsMatchBruteForce) {
                       : (k < 4 ? Kind::kRigid : Kind::kWall);
     if (s.kind[i] == Kind::kRigid) body[i] = static_cast<std::int32_t>(i % 3);
   }
+}
+
+TEST(NeighborList, MixedKindsMatchBruteForce) {
+  const double rc = 0.3, range = 0.12;
+  CellGrid<2> grid(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc, {false, false});
+  Comm comm(MPI_COMM_WORLD);
+  Halo<2> halo(grid, comm);
+  std::vector<std::int64_t> counts(static_cast<size_t>(grid.total()), 1);
+  halo.set_decomposition(Decomposition<2>(grid, 1, counts));
+  ParticleStore<2> s;
+  std::vector<std::int32_t> body;
+  mixed_particles(s, body);
   halo.build_ghosts(s);
   for (const bool rigid_all : {false, true}) {
     for (const bool walls : {false, true}) {
       ContactQuery q{body.data(), range, walls};
       NeighborList<2> nl;
       nl.build(s, grid, halo.ghost_box(), rc, &q, rigid_all);
+      expect_mixed_lists(s, nl, body, rc, range, rigid_all, walls, {false, false}, 1.7);
+    }
+  }
+}
+
+// Verlet lists: candidates within rc + skin at the positions of the search, refined after
+// every particle moved up to just under half the skin (some of them out through the periodic
+// boundary, where they are not wrapped back until the next search) and the ghosts were
+// refreshed, give exactly the lists of the new positions; the order is the candidates'.
+TEST(NeighborList, RefinedCandidatesMatchBruteForceAfterMoving) {
+  const double rc = 0.3, range = 0.12, skin = 0.08;
+  const std::array<bool, 2> periodic = {true, false};
+  CellGrid<2> grid(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc + skin, periodic);
+  Comm comm(MPI_COMM_WORLD);
+  Halo<2> halo(grid, comm);
+  std::vector<std::int64_t> counts(static_cast<size_t>(grid.total()), 1);
+  halo.set_decomposition(Decomposition<2>(grid, 1, counts));
+  ParticleStore<2> s;
+  std::vector<std::int32_t> body;
+  mixed_particles(s, body);
+  halo.migrate(s);
+  halo.build_ghosts(s);
+  // Bodies of the owned particles and of their periodic images.
+  for (std::size_t k = s.owned(); k < s.size(); ++k)
+    body.push_back(body[static_cast<std::size_t>(s.id[k])]);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> angle(0.0, 2 * std::numbers::pi);
+  std::uniform_real_distribution<double> length(0.0, 0.4999 * skin);
+  for (const bool rigid_all : {false, true}) {
+    for (const bool walls : {false, true}) {
+      ContactQuery q{body.data(), range, walls};
+      NeighborList<2> nl;
+      nl.build_candidates(s, grid, halo.ghost_box(), rc, skin, &q, rigid_all);
+      const std::vector<Vec<2>> searched(s.x.data(), s.x.data() + s.owned());
+      std::size_t outside = 0;
       for (std::size_t i = 0; i < s.owned(); ++i) {
-        std::multiset<std::int64_t> fluid, rest, contacts;
-        for (std::size_t j = 0; j < n; ++j) {
-          const double r = (s.x[i] - s.x[j]).norm();
-          if (j == i) continue;
-          const bool jf = s.kind[j] == Kind::kFluid;
-          if (r < rc && (jf || s.kind[i] == Kind::kFluid)) fluid.insert(s.id[j]);
-          if (r < rc && !jf && rigid_all &&
-              (s.kind[i] == Kind::kRigid ||
-               (s.kind[i] == Kind::kWall && s.kind[j] == Kind::kRigid)))
-            rest.insert(s.id[j]);
-          if (r < range && s.kind[i] == Kind::kRigid && !jf &&
-              ((s.kind[j] == Kind::kRigid && body[j] != body[i]) ||
-               (s.kind[j] == Kind::kWall && walls)))
-            contacts.insert(s.id[j]);
-        }
-        std::multiset<std::int64_t> got_fluid, got_rest, got_contacts;
-        for (const std::uint32_t* j = nl.begin(i); j != nl.fluid_end(i); ++j)
-          got_fluid.insert(s.id[*j]);
-        for (const std::uint32_t* j = nl.fluid_end(i); j != nl.end(i); ++j)
-          got_rest.insert(s.id[*j]);
-        for (const std::uint32_t* j = nl.contacts_begin(i); j != nl.contacts_end(i); ++j)
-          got_contacts.insert(s.id[*j]);
-        ASSERT_EQ(got_fluid, fluid) << "particle " << i << " rigid_all " << rigid_all;
-        ASSERT_EQ(got_rest, rest) << "particle " << i << " rigid_all " << rigid_all;
-        ASSERT_EQ(got_contacts, contacts) << "particle " << i << " walls " << walls;
+        const double a = angle(rng), l = length(rng);
+        s.x[i] = searched[i] + l * Vec<2>(std::cos(a), std::sin(a));
+        outside += s.x[i][0] < 0 || s.x[i][0] >= 1.7;
+      }
+      halo.refresh_ghosts(s);
+      nl.refine(s, rc, range);
+      EXPECT_GT(outside, 0u) << "no particle crossed the periodic boundary";
+      expect_mixed_lists(s, nl, body, rc, range, rigid_all, walls, periodic, 1.7);
+      // The refined lists keep the candidates' order, which is canonical at the searched
+      // positions: refined there, they are a fresh search's lists, pair for pair.
+      std::copy(searched.begin(), searched.end(), s.x.data());
+      halo.refresh_ghosts(s);
+      nl.refine(s, rc, range);
+      NeighborList<2> fresh;
+      fresh.build(s, grid, halo.ghost_box(), rc, &q, rigid_all);
+      for (std::size_t i = 0; i < s.owned(); ++i) {
+        ASSERT_TRUE(std::equal(nl.begin(i), nl.end(i), fresh.begin(i), fresh.end(i)))
+            << "particle " << i;
+        ASSERT_EQ(nl.fluid_end(i) - nl.begin(i), fresh.fluid_end(i) - fresh.begin(i));
+        ASSERT_TRUE(std::equal(nl.contacts_begin(i), nl.contacts_end(i), fresh.contacts_begin(i),
+                               fresh.contacts_end(i)));
       }
     }
   }
