@@ -51,9 +51,10 @@ double neighbor_skin(const v1::Case& c) {
   double skin = (c.has_neighbor_skin() ? c.neighbor_skin() : 0.3) * c.dx();
   const auto& lo = c.domain().lo();
   const auto& hi = c.domain().hi();
-  double narrowest = std::min(hi.x() - lo.x(), hi.y() - lo.y());
-  if (c.dimension() == 3) narrowest = std::min(narrowest, hi.z() - lo.z());
-  skin = std::min(skin, 0.5 * narrowest - kernel_support_radius(c));
+  const double length[3] = {hi.x() - lo.x(), hi.y() - lo.y(), hi.z() - lo.z()};
+  const bool periodic[3] = {c.periodic_x(), c.periodic_y(), c.periodic_z()};
+  for (int a = 0; a < c.dimension(); ++a)
+    if (periodic[a]) skin = std::min(skin, 0.5 * length[a] - kernel_support_radius(c));
   return std::max(skin, 0.0);
 }
 
@@ -134,9 +135,13 @@ CaseEstimate estimate_case(const v1::Case& c) {
   const double k = rc_over_dx;
   const double neighbours =
       d == 2 ? std::numbers::pi * k * k : 4.0 / 3.0 * std::numbers::pi * k * k * k;
-  double per_pair = c.pair_kernel_storage() == v1::PAIR_KERNEL_STREAM ? 4.0 : 28.0;
-  // With a Verlet skin the candidates within r_c + skin are kept too (4 bytes each).
-  per_pair += 4.0 * std::pow(1.0 + neighbor_skin(c) / kernel_support_radius(c), d);
+  // With a Verlet skin the candidates within r_c + skin are kept as well as the lists, both
+  // sized for the candidates with 25% spare (4 bytes an index).
+  const double skin = neighbor_skin(c);
+  const double per_index =
+      skin > 0 ? 2 * 4.0 * 1.25 * std::pow(1.0 + skin / kernel_support_radius(c), d) : 4.0;
+  const double per_pair =
+      per_index + (c.pair_kernel_storage() == v1::PAIR_KERNEL_STREAM ? 0 : 24.0);
   const double per_particle = (d == 2 ? 200.0 : 280.0) + per_pair * neighbours;
   e.bytes = 1.15 * e.total() * per_particle;
   return e;

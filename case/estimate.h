@@ -30,8 +30,8 @@ double smoothing_length(const v1::Case& c);
 // r_c = kappa h.
 double kernel_support_radius(const v1::Case& c);
 // The Verlet skin of the neighbour search [m]: neighbor_skin (default 0.3) times dx, 0 with
-// open boundaries (particles come and go every few steps), and at most what leaves every axis
-// of the domain two cells of r_c + skin (the periodic images need them).
+// open boundaries (particles come and go every few steps), and at most what leaves every
+// periodic axis of the domain two cells of r_c + skin (no pair through two images).
 double neighbor_skin(const v1::Case& c);
 // The thickness a `shell` wall gets when it gives none: whole layers of dx covering r_c
 // (Adami 2012 sec. 3).

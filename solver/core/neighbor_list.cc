@@ -237,6 +237,8 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
       row_end[k] = cell_start_[static_cast<std::size_t>(c + last + 1)];
       candidates += row_end[k] - row_begin[k];
     }
+    if (L.pairs + candidates > std::numeric_limits<std::uint32_t>::max())
+      throw std::runtime_error("over 2^32 neighbour pairs on one rank: use more ranks");
     if (L.nbr.size() < L.pairs + candidates)
       L.nbr.resize(std::max(L.nbr.size() + L.nbr.size() / 4, L.pairs + candidates));  // 25% spare
     if (others_.size() < candidates) others_.resize(candidates);

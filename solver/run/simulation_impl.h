@@ -1086,7 +1086,9 @@ std::string Simulation<D, K>::write_checkpoint_now() {
                            {"dt0", dt0_},
                            {"next_series", next_series_},
                            {"contact_possible", contact_possible_ ? 1.0 : 0.0}};
-  if (searched_at_) state["searched_at"] = 1.0;  // the particles carry the positions searched at
+  // The particles carry the positions searched at, and a resume lists the candidates within
+  // this skin of them.
+  if (searched_at_) state["searched_at_skin"] = skin_;
   state["neighbor_searches"] = static_cast<double>(searches_);
   if (bodies_) bodies_->save(state);
   if (contact_) contact_->save(state, comm_);
@@ -1286,8 +1288,10 @@ void Simulation<D, K>::start() {
     // (an uninterrupted run has it from the previous step), and with a skin the first step
     // keeps the candidates of the search before the checkpoint (or searches again) as the
     // uninterrupted run does.
-    if (searched_at_ && state.count("searched_at") == 0) {
-      // A checkpoint of code before the skin: search afresh here.
+    if (searched_at_ &&
+        (state.count("searched_at_skin") == 0 || state_value(state, "searched_at_skin") != skin_)) {
+      // A checkpoint of code before the skin, or of another skin (whose candidates may miss
+      // pairs this skin's would hold): search afresh here.
       std::copy(s_.x.data(), s_.x.data() + s_.owned(), searched_at_->data());
     }
     exchange_and_search(Search::kAtReference);

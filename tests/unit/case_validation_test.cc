@@ -344,7 +344,8 @@ TEST(CaseValidation, SizeLimitNamesDx) {
 }
 
 // The Verlet skin is given in units of dx, refused outside [0, 2] by name; it is 0.3 dx by
-// default, 0 with open boundaries, and no wider than leaves each axis two cells of r_c + skin.
+// default, 0 with open boundaries, and no wider than leaves each periodic axis two cells of
+// r_c + skin.
 TEST(CaseValidation, NeighborSkin) {
   EXPECT_TRUE(has_error(errors_of("neighbor_skin: -0.1"), "neighbor_skin",
                         "between 0 and 2 (times dx; got -0.1)"));
@@ -356,7 +357,9 @@ TEST(CaseValidation, NeighborSkin) {
   EXPECT_NEAR(neighbor_skin(c), 0.15, 1e-15);
   c.set_neighbor_skin(2);  // r_c + skin = 0.5 would leave the 2 x 2 domain 4 cells: allowed
   EXPECT_NEAR(neighbor_skin(c), 0.2, 1e-15);
-  c.mutable_domain()->mutable_hi()->set_y(0.9);  // 0.9 / 2 - r_c = 0.15
+  c.mutable_domain()->mutable_hi()->set_y(0.9);  // a narrow axis that is not periodic
+  EXPECT_NEAR(neighbor_skin(c), 0.2, 1e-15);
+  c.set_periodic_y(true);  // 0.9 / 2 - r_c = 0.15: two cells of r_c + skin along y
   EXPECT_NEAR(neighbor_skin(c), 0.15, 1e-15);
   c.add_open_boundaries();
   EXPECT_EQ(neighbor_skin(c), 0.0);
