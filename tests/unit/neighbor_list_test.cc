@@ -14,16 +14,27 @@
 namespace sph {
 namespace {
 
+// The grid and the halo of a run on one rank (periodic images are ghosts it sends itself).
+template <int D>
+struct OneRank {
+  OneRank(const Vec<D>& lo, const Vec<D>& hi, double cell, const std::array<bool, D>& periodic)
+      : grid(lo, hi, cell, periodic), halo(grid, comm) {
+    std::vector<std::int64_t> counts(static_cast<size_t>(grid.total()), 1);
+    halo.set_decomposition(Decomposition<D>(grid, 1, counts));
+  }
+  CellGrid<D> grid;
+  Comm comm{MPI_COMM_WORLD};
+  Halo<D> halo;
+};
+
 template <int D>
 void check_against_brute_force(const std::array<bool, D>& periodic, int seed) {
   const double rc = 0.3;
   Vec<D> lo = Vec<D>::Zero(), hi = Vec<D>::Constant(1.7);
-  CellGrid<D> grid(lo, hi, rc, periodic);
-  Comm comm(MPI_COMM_WORLD);
-  ASSERT_EQ(comm.size(), 1);
-  Halo<D> halo(grid, comm);
-  std::vector<std::int64_t> counts(static_cast<size_t>(grid.total()), 1);
-  halo.set_decomposition(Decomposition<D>(grid, 1, counts));
+  OneRank<D> one(lo, hi, rc, periodic);
+  const CellGrid<D>& grid = one.grid;
+  Halo<D>& halo = one.halo;
+  ASSERT_EQ(one.comm.size(), 1);
 
   ParticleStore<D> s;
   const int n = D == 2 ? 600 : 1500;
@@ -126,11 +137,9 @@ void mixed_particles(ParticleStore<2>& s, std::vector<std::int32_t>& body) {
 
 TEST(NeighborList, MixedKindsMatchBruteForce) {
   const double rc = 0.3, range = 0.12;
-  CellGrid<2> grid(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc, {false, false});
-  Comm comm(MPI_COMM_WORLD);
-  Halo<2> halo(grid, comm);
-  std::vector<std::int64_t> counts(static_cast<size_t>(grid.total()), 1);
-  halo.set_decomposition(Decomposition<2>(grid, 1, counts));
+  OneRank<2> one(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc, {false, false});
+  const CellGrid<2>& grid = one.grid;
+  Halo<2>& halo = one.halo;
   ParticleStore<2> s;
   std::vector<std::int32_t> body;
   mixed_particles(s, body);
@@ -152,11 +161,9 @@ TEST(NeighborList, MixedKindsMatchBruteForce) {
 TEST(NeighborList, RefinedCandidatesMatchBruteForceAfterMoving) {
   const double rc = 0.3, range = 0.12, skin = 0.08;
   const std::array<bool, 2> periodic = {true, false};
-  CellGrid<2> grid(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc + skin, periodic);
-  Comm comm(MPI_COMM_WORLD);
-  Halo<2> halo(grid, comm);
-  std::vector<std::int64_t> counts(static_cast<size_t>(grid.total()), 1);
-  halo.set_decomposition(Decomposition<2>(grid, 1, counts));
+  OneRank<2> one(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc + skin, periodic);
+  const CellGrid<2>& grid = one.grid;
+  Halo<2>& halo = one.halo;
   ParticleStore<2> s;
   std::vector<std::int32_t> body;
   mixed_particles(s, body);
@@ -204,11 +211,9 @@ TEST(NeighborList, RefinedCandidatesMatchBruteForceAfterMoving) {
 
 TEST(NeighborList, OrderIsCanonical) {
   // The same particles stored in two different orders give the same neighbour id sequences.
-  CellGrid<2> grid(Vec<2>(0, 0), Vec<2>(1, 1), 0.25, {false, false});
-  Comm comm(MPI_COMM_WORLD);
-  Halo<2> halo(grid, comm);
-  std::vector<std::int64_t> counts(static_cast<size_t>(grid.total()), 1);
-  halo.set_decomposition(Decomposition<2>(grid, 1, counts));
+  OneRank<2> one(Vec<2>(0, 0), Vec<2>(1, 1), 0.25, {false, false});
+  const CellGrid<2>& grid = one.grid;
+  Halo<2>& halo = one.halo;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::vector<Vec<2>> pos(300);
