@@ -74,7 +74,10 @@ int Decomposition<D>::build(const CellGrid<D>& grid, const std::vector<std::int6
         split = c.split;
       }
   }
-  if (axis < 0) throw std::runtime_error("domain has fewer cells than ranks: use fewer ranks");
+  if (axis < 0)
+    throw std::runtime_error(
+        "domain has fewer cells (r_c + neighbor_skin wide) than ranks: use fewer ranks or a "
+        "smaller neighbor_skin");
   CellBox<D> lb = box, rb = box;
   lb.hi[axis] = split;
   rb.lo[axis] = split;
