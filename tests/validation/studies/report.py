@@ -28,7 +28,7 @@ the tiny coarse levels).
     "poiseuille": """
 The start-up profile at t = 10 converges at order 1.8 over seven levels: 3.7% of u_max with
 four particles across the channel (dx = 0.25), 1.0% with eight, 0.086% with 32. 1% needs
-about eight particles across (dx = 0.124), at 0.07 s of one core per unit of simulated time;
+about eight particles across (dx = 0.124), at 0.04 s of one core per unit of simulated time;
 5% and 10% are met by the coarsest level, four particles across.
 """,
     "couette": """
@@ -36,7 +36,7 @@ Order 1.85 over seven levels: 1.7% of the wall speed with four particles across 
 0.72% with six, 0.038% with 32. Finer than this the error levels off: a previous ladder (ten
 to 55 particles across, in a narrower box) gave 0.023% at dx = 0.025 and 0.0225% at 0.018,
 where something other than resolution dominates (the weakly compressible model, Ma = 0.1, is
-the likely one). 1% needs five particles across (dx = 0.2), 0.02 s of one core per unit of
+the likely one). 1% needs five particles across (dx = 0.2), 0.01 s of one core per unit of
 simulated time; 5% and 10% are met by the coarsest level.
 """,
     "taylor_green": """
@@ -47,8 +47,8 @@ wavelength, 5.6% at 80. The study measures the field because the decay rate (col
 law describes it (FreeSurface.TaylorGreenDecayRate still checks it at dx = 0.04). With the
 amplitude right within about 1%, most of the field error at the finest level is in its shape
 (particle-scale velocity fluctuations of the weakly compressible, transport-velocity scheme
-are the likely source). 10% needs about 42 particles per wavelength; 5% about 90 (extrapolated); 1% would
-need some 480 (dx = 0.002, 230k particles, nearly two core-hours per unit of simulated time),
+are the likely source). 10% needs about 42 particles per wavelength; 5% about 85 (extrapolated); 1% would
+need some 440 (dx = 0.0023, 190k particles, some 20 core-minutes per unit of simulated time),
 which says the scheme at Ma = 0.1 is not the tool for a 1% velocity field.
 """,
     "hydrostatic": """
@@ -137,7 +137,7 @@ rather than a clean power law). Why h = 2 dx, measured by hand on the same case:
 
 So for a hydrostatic pressure a user gains nothing from refining at h = dx below 0.1%; a
 larger h / dx (here twice the support radius, four times the neighbours, with a step that grows
-with h: the four levels cost 7 min against 10 min at h = dx, where the viscous step
+with h: the four levels cost 7 min against 10 min at h = dx before the Verlet lists, where the viscous step
 0.125 h^2 / nu is four times smaller) or a larger c is what lowers it. All three targets are
 met at the coarsest level either way.
 """,
@@ -148,14 +148,14 @@ by t = 2 (about 0.036, 22% of its initial heat), extrapolated from the two fines
 order 2 (estimated from the three finest it comes out near 4-5, beyond what the scheme can do,
 so it is not used; see the case file). The error falls from 0.9% at dx = 0.05 (eight
 particles across the block) to 0.03% at dx = 0.0167, faster than order 2 over this range.
-Every level meets the targets; dx = 0.05 costs about a second of one core per unit of
+Every level meets the targets; dx = 0.05 costs about a third of a second of one core per unit of
 simulated time. At dx = 0.0167 the time step is set by conduction in the block (kappa = 0.1),
 which doubles the steps.
 """,
     "dam_break": """
 Against the MPS surge front of Koshizuka & Oka 1996 the error falls at order 1.2, from 7% at
 dx = a/20 to 2.1% at a/56. 10% is met at every level and 5% needs dx = 0.037 (a/27); 1% would
-need dx = 0.0094 (a/106, extrapolated, about 25k particles and 5 core-minutes per unit of
+need dx = 0.0094 (a/106, extrapolated, about 25k particles and 3.5 core-minutes per unit of
 simulated time). The reference is another simulation with its own error, and both particle
 methods run ahead of the experiments (Adami 2012 Fig. 13a; FreeSurface.DamBreakFront* also
 compares with them): a few percent below this, the error measures the difference between two
@@ -168,7 +168,7 @@ reached the uncertainty of the reference (digitised from a figure, 1-3% scatter,
 viscosity of the original setup is not settled; see the data file's header), and the speed
 moves by about 1% between the finer levels. The fitted order (2.8) is pulled up by the level
 that happens to sit on the data; read the table, not the slope: 5% needs D/dx = 5 to 7.5 and
-1% D/dx = 9 or more, at about two core-minutes per simulated second.
+1% D/dx = 9 or more, at about one core-minute per simulated second.
 """,
 }
 
