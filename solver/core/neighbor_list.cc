@@ -18,13 +18,12 @@ template <int D>
 void NeighborList<D>::build_candidates(const ParticleStore<D>& s, const CellGrid<D>& grid,
                                        const CellBox<D>& box, double rc, double skin,
                                        const ContactQuery* contact, bool rigid_all) {
-  if (!contact) {
-    build_into(cand_, s, grid, box, rc + skin, nullptr, rigid_all);
-    return;
+  ContactQuery wider;
+  if (contact) {
+    wider = *contact;
+    wider.range += skin;
   }
-  ContactQuery wider = *contact;
-  wider.range += skin;
-  build_into(cand_, s, grid, box, rc + skin, &wider, rigid_all);
+  build_into(cand_, s, grid, box, rc + skin, contact ? &wider : nullptr, rigid_all);
 }
 
 template <int D>
@@ -184,7 +183,7 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
     if (!fluid && !contacts && !all) {
       // A wall that lists rigid particles must not be skipped beside a body with no fluid
       // near: its Dirichlet mirror would have nothing to average and fall back to the wall
-      // value, so the body drew about twice the flux (Conduction.SolidSlabOnADirichletWallErfc).
+      // value, so the body drew about half the flux (Conduction.SolidSlabOnADirichletWallErfc).
       const std::uint8_t wanted = wall_rigid ? 3 : 1;
       bool any = false;
       for (int k = 0; k < kRows && !any; ++k)
