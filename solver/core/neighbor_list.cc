@@ -243,23 +243,13 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
     if (others_.size() < candidates) others_.resize(candidates);
     // Branch-free appends: every candidate is written and the counts advance only for the
     // neighbours kept (a data-dependent branch here mispredicts often once the particles are
-    // disordered). Fluid particles keep all neighbours in `out`; the others keep fluid ones
-    // there and, as required, rigid or all non-fluid ones in `other`, which follow.
+    // disordered). Fluid neighbours go to `out`; rigid or all non-fluid ones, as required, to
+    // `other`, which follows them.
     std::uint32_t* out = L.nbr.data() + L.pairs;
     std::uint32_t* other = others_.data();
     std::size_t m = 0, o = 0;
     const std::uint32_t self = static_cast<std::uint32_t>(i);
-    if (fluid) {  // the common case: every neighbour whatever its kind, one store per candidate
-      for (int k = 0; k < kRows; ++k) {
-        const std::uint32_t q_end = row_end[k];
-        for (std::uint32_t q = row_begin[k]; q < q_end; ++q) {
-          const std::uint32_t j = cell_items_[q];
-          out[m] = j;
-          m += static_cast<std::size_t>(((xi - x[j]).squaredNorm() < rc2) & (j != self));
-        }
-      }
-    }
-    for (int k = 0; k < kRows && !fluid; ++k) {
+    for (int k = 0; k < kRows; ++k) {
       const std::uint32_t q_end = row_end[k];
       for (std::uint32_t q = row_begin[k]; q < q_end; ++q) {
         const std::uint32_t j = cell_items_[q];
@@ -279,7 +269,8 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
         }
       }
     }
-    // Non-fluid particles: fluid neighbours first (the wall condition stops there).
+    // Fluid neighbours first: the wall condition stops there, and loops over a fluid
+    // particle's neighbours treat the fluid ones and the dummies apart, without a test per pair.
     L.pairs += m;
     L.fluid_end[i] = static_cast<std::uint32_t>(L.pairs);
     std::copy(other, other + o, out + m);

@@ -1,10 +1,10 @@
 #pragma once
 // Cell-linked neighbour search producing a compact (CSR) neighbour list per step, shared by
 // every pass over pairs in that step (density, wall extrapolation, forces). The list of a
-// particle is in canonical order: the 5^D half cells around it in fixed order, and ascending
-// global id within each half cell. Sums over neighbours are therefore evaluated in the same order
-// whatever the rank count or memory order, which makes results independent of the
-// decomposition.
+// particle is in canonical order: its fluid neighbours, then the others, each in the order of
+// the 5^D half cells around it and ascending global id within each half cell. Sums over neighbours
+// are therefore evaluated in the same order whatever the rank count or memory order, which makes
+// results independent of the decomposition.
 #include <cstdint>
 #include <vector>
 
@@ -51,7 +51,8 @@ class NeighborList {
   // Counts the builds and refinements, so a table made from one list can tell it is stale.
   std::uint64_t generation() const { return generation_; }
   const std::uint32_t* end(std::size_t i) const { return cur_.nbr.data() + cur_.start[i + 1]; }
-  // For wall and rigid particles: the end of the fluid neighbours, which come first.
+  // The end of the fluid neighbours, which come first in every list (in canonical order, as
+  // do the others after them).
   const std::uint32_t* fluid_end(std::size_t i) const {
     return cur_.nbr.data() + cur_.fluid_end[i];
   }

@@ -38,14 +38,14 @@ SolidFractionScan solid_fraction(const ParticleStore<D>& s, const NeighborList<D
   for (std::size_t i = 0; i < s.owned(); ++i) {
     if (s.kind[i] != Kind::kFluid) continue;
     int used = 0;
-    // Most fluid particles have no solid neighbour: the values are asked for (evaluated, with
-    // PAIR_KERNEL_STREAM) only at the first one.
-    const double* w = nullptr;
+    // The solid neighbours follow the fluid ones. Most fluid particles have none: the values
+    // are asked for (evaluated, with PAIR_KERNEL_STREAM) only for those that do.
     const std::uint32_t* list = nl.begin(i);
-    for (const std::uint32_t* jp = list; jp != nl.end(i); ++jp) {
+    const std::uint32_t* solid = nl.fluid_end(i);
+    if (solid == nl.end(i)) continue;
+    const double* w = pk.of(nl, i).w;
+    for (const std::uint32_t* jp = solid; jp != nl.end(i); ++jp) {
       const std::uint32_t j = *jp;
-      if (s.kind[j] == Kind::kFluid) continue;
-      if (!w) w = pk.of(nl, i).w;
       // Walls are keys >= 0, bodies < 0.
       const std::int64_t k = s.kind[j] == Kind::kWall ? (wall_index ? wall_index[j] : 0)
                                                       : -1 - (body_index ? body_index[j] : 0);

@@ -125,50 +125,56 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
     const DummyPair<D, kViscous, kTransport> dummy{fi, rhoi, pi, Vi2, vi, dui};
     const PairValues g = in.pairs->of(nl, i);
     const double *g_r = g.r, *g_w = g.w, *g_dw = g.dw;
-    for (const std::uint32_t* jp = nl.begin(i); jp != nl.end(i); ++jp, ++g_r, ++g_w, ++g_dw) {
+    // Fluid neighbours, then the dummies (the list keeps them apart: no test per pair).
+    const std::uint32_t* const fluid_end = nl.fluid_end(i);
+    for (const std::uint32_t* jp = nl.begin(i); jp != fluid_end; ++jp, ++g_r, ++g_w, ++g_dw) {
       const std::uint32_t j = *jp;
       const Vec<D> rij = xi - x[j];
       const double r = *g_r;
       if (r == 0.0) continue;
       const double dwdr = *g_dw, dwdr_r = dwdr / r;
       const Vec<D> gradW = dwdr_r * rij;
-      if (kind[j] == Kind::kFluid) {
-        const double rhoj = rho[j], Vj = V[j];
-        const double s2 = Vi2 + Vj * Vj;
-        const double pt = (rhoj * pi + rhoi * p[j]) / (rhoi + rhoj);
-        acc -= (s2 * pt) * gradW;
-        if constexpr (kViscous) {
-          const double eta_ij = eta_i[mat[j]];
-          if (eta_ij > 0) acc += (s2 * eta_ij * dwdr_r) * (vi - v[j]);
-        }
-        if constexpr (kTransport) {
-          acc_bg -= s2 * gradW;
-          sigma += Vj * *g_w;
-          grad_sum += Vj * gradW;
-          const Vec<D> duj = (*in.transport)[j] - v[j];
-          // 1/2 (A_i + A_j) . grad W with A = rho u (u~ - u)^T.
-          acc += (0.5 * s2) * (rhoi * dui.dot(gradW) * vi + rhoj * duj.dot(gradW) * v[j]);
-        }
-        if constexpr (kArtVisc) {
-          // Adami 2012 eq. 11 as printed has a leading minus; with grad_a W_ab = W' e_ab that
-          // accelerates approaching particles towards each other. The dissipative sign is
-          // Monaghan's (Pi_ab = -alpha h c v_ab.r_ab / (rho (r^2 + eps h^2)), a -= m_b Pi_ab
-          // grad W), applied to every pair as the paper does.
-          const double vr = (vi - v[j]).dot(rij);
-          const double cbar = 0.5 * (fi.c + fl[mat[j]].c), rhobar = 0.5 * (rhoi + rhoj);
-          acc_av += (m[j] * in.alpha * in.h * cbar * vr / (rhobar * (r * r + eps_h2))) * gradW;
-        }
-      } else {
-        double s2 = 0;
-        bool same = false;
-        const double pj = dummy_pressure(in, p, j, mat[i], same);
-        acc += dummy(gradW, dwdr, r, pj, rho[j], same, (*in.noslip)[j],
-                     in.free_slip && (*in.free_slip)[j], in.wall_volume, s2);
-        if constexpr (kTransport) {
-          acc_bg -= s2 * gradW;
-          sigma += in.wall_volume * *g_w;
-          grad_sum += in.wall_volume * gradW;
-        }
+      const double rhoj = rho[j], Vj = V[j];
+      const double s2 = Vi2 + Vj * Vj;
+      const double pt = (rhoj * pi + rhoi * p[j]) / (rhoi + rhoj);
+      acc -= (s2 * pt) * gradW;
+      if constexpr (kViscous) {
+        const double eta_ij = eta_i[mat[j]];
+        if (eta_ij > 0) acc += (s2 * eta_ij * dwdr_r) * (vi - v[j]);
+      }
+      if constexpr (kTransport) {
+        acc_bg -= s2 * gradW;
+        sigma += Vj * *g_w;
+        grad_sum += Vj * gradW;
+        const Vec<D> duj = (*in.transport)[j] - v[j];
+        // 1/2 (A_i + A_j) . grad W with A = rho u (u~ - u)^T.
+        acc += (0.5 * s2) * (rhoi * dui.dot(gradW) * vi + rhoj * duj.dot(gradW) * v[j]);
+      }
+      if constexpr (kArtVisc) {
+        // Adami 2012 eq. 11 as printed has a leading minus; with grad_a W_ab = W' e_ab that
+        // accelerates approaching particles towards each other. The dissipative sign is
+        // Monaghan's (Pi_ab = -alpha h c v_ab.r_ab / (rho (r^2 + eps h^2)), a -= m_b Pi_ab
+        // grad W), applied to every pair as the paper does.
+        const double vr = (vi - v[j]).dot(rij);
+        const double cbar = 0.5 * (fi.c + fl[mat[j]].c), rhobar = 0.5 * (rhoi + rhoj);
+        acc_av += (m[j] * in.alpha * in.h * cbar * vr / (rhobar * (r * r + eps_h2))) * gradW;
+      }
+    }
+    for (const std::uint32_t* jp = fluid_end; jp != nl.end(i); ++jp, ++g_r, ++g_w, ++g_dw) {
+      const std::uint32_t j = *jp;
+      const double r = *g_r;
+      if (r == 0.0) continue;
+      const double dwdr = *g_dw;
+      const Vec<D> gradW = (dwdr / r) * (xi - x[j]);
+      double s2 = 0;
+      bool same = false;
+      const double pj = dummy_pressure(in, p, j, mat[i], same);
+      acc += dummy(gradW, dwdr, r, pj, rho[j], same, (*in.noslip)[j],
+                   in.free_slip && (*in.free_slip)[j], in.wall_volume, s2);
+      if constexpr (kTransport) {
+        acc_bg -= s2 * gradW;
+        sigma += in.wall_volume * *g_w;
+        grad_sum += in.wall_volume * gradW;
       }
     }
     s.a[i] = acc / mi + acc_av + in.body;

@@ -163,7 +163,16 @@ class ScalarDiffusion {
       double sum = 0;
       const PairValues g = pk.of(nl, a);
       const double *g_r = g.r, *g_dw = g.dw;
-      for (const std::uint32_t* bp = nl.begin(a); bp != nl.end(a); ++bp, ++g_r, ++g_dw) {
+      // The fluid neighbours come first and are never walls.
+      const std::uint32_t* const fluid_end = nl.fluid_end(a);
+      for (const std::uint32_t* bp = nl.begin(a); bp != fluid_end; ++bp, ++g_r, ++g_dw) {
+        const std::uint32_t b = *bp;
+        const double c = coef[cls[b]];  // 0 for non-conducting pairs
+        const double r = *g_r;
+        if (c == 0.0 || r == 0) continue;
+        sum += vol[b] * c * (va - value[b]) / r * *g_dw;
+      }
+      for (const std::uint32_t* bp = fluid_end; bp != nl.end(a); ++bp, ++g_r, ++g_dw) {
         const std::uint32_t b = *bp;
         const std::uint16_t cb = cls[b];
         const double c = coef[cb];  // 0 for insulated walls and non-conducting pairs

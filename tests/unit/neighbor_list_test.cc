@@ -96,9 +96,13 @@ void expect_mixed_lists(const ParticleStore<2>& s, const NeighborList<2>& nl,
       const double r = d.norm();
       if (j == i) continue;
       const bool jf = s.kind[j] == Kind::kFluid;
-      if (r < rc && (jf || s.kind[i] == Kind::kFluid)) fluid.insert(s.id[j]);
-      if (r < rc && !jf && rigid_all &&
-          (s.kind[i] == Kind::kRigid || (s.kind[i] == Kind::kWall && s.kind[j] == Kind::kRigid)))
+      // Every list: the fluid neighbours first, then (for fluid particles always, for the
+      // others as rigid_all asks) the walls and rigid particles.
+      if (r < rc && jf) fluid.insert(s.id[j]);
+      if (r < rc && !jf &&
+          (s.kind[i] == Kind::kFluid ||
+           (rigid_all && (s.kind[i] == Kind::kRigid ||
+                          (s.kind[i] == Kind::kWall && s.kind[j] == Kind::kRigid)))))
         rest.insert(s.id[j]);
       if (r < range && s.kind[i] == Kind::kRigid && !jf &&
           ((s.kind[j] == Kind::kRigid && body[j] != body[i]) ||
@@ -210,7 +214,8 @@ TEST(NeighborList, RefinedCandidatesMatchBruteForceAfterMoving) {
 }
 
 TEST(NeighborList, OrderIsCanonical) {
-  // The same particles stored in two different orders give the same neighbour id sequences.
+  // The same particles stored in two different orders give the same neighbour id sequences,
+  // fluid neighbours and walls alike.
   OneRank<2> one(Vec<2>(0, 0), Vec<2>(1, 1), 0.25, {false, false});
   const CellGrid<2>& grid = one.grid;
   Halo<2>& halo = one.halo;
@@ -225,7 +230,7 @@ TEST(NeighborList, OrderIsCanonical) {
       const std::size_t i = reversed ? pos.size() - 1 - k : k;
       s.x[i] = pos[k];
       s.id[i] = static_cast<std::int64_t>(k);
-      s.kind[i] = Kind::kFluid;
+      s.kind[i] = k % 4 == 0 ? Kind::kWall : Kind::kFluid;
     }
     halo.build_ghosts(s);
     NeighborList<2> nl;
