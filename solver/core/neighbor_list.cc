@@ -24,6 +24,69 @@ void NeighborList<D>::build_candidates(const ParticleStore<D>& s, const CellGrid
     wider.range += skin;
   }
   build_into(cand_, s, grid, box, rc + skin, contact ? &wider : nullptr, rigid_all);
+  cand_range_ = rc + skin;
+  cand_rigid_all_ = rigid_all;
+}
+
+template <int D>
+void NeighborList<D>::reclassify_candidates(const ParticleStore<D>& s, const ContactQuery* contact,
+                                            double skin) {
+  const std::size_t owned = s.owned();
+  if (cand_.start.size() != owned + 1)
+    throw std::logic_error("neighbour candidates are of other particles: build them again");
+  if (!cand_rigid_all_)
+    throw std::logic_error("candidates without rigid_all miss particles that change kind");
+  if (contact && contact->range + skin > cand_range_)
+    throw std::logic_error("contact range beyond the neighbour candidates");
+  const Kind* kind = s.kind.data();
+  const Vec<D>* x = s.x.data();
+  const double cr = contact ? contact->range + 2.0 * skin : 0.0, cr2 = cr * cr;
+  // The scan of build_into() visits the half cells in ascending linear index (rows in z, then
+  // y, then x) and each cell's particles in the order of cell_items_: the canonical order of
+  // a list is the ascending position of its particles in cell_items_, which is unchanged since
+  // the candidates were listed.
+  if (cell_items_.size() != s.size())
+    throw std::logic_error("neighbour candidates are of other particles: build them again");
+  slot_.resize(cell_items_.size());
+  for (std::size_t q = 0; q < cell_items_.size(); ++q)
+    slot_[cell_items_[q]] = static_cast<std::uint32_t>(q);
+  const std::uint32_t* slot = slot_.data();
+  std::uint32_t* cand = cand_.nbr.data();
+  cand_.contact_nbr.clear();
+  cand_.contact_start[0] = 0;
+  for (std::size_t i = 0; i < owned; ++i) {
+    // Both parts of the list are in canonical order: merged, they are the whole list in that
+    // order, which is then split again by the kinds now (fluid first).
+    const std::uint32_t b = cand_.start[i], f = cand_.fluid_end[i], e = cand_.start[i + 1];
+    if (others_.size() < 2 * std::size_t{e - b}) others_.resize(2 * std::size_t{e - b});
+    std::uint32_t* merged = others_.data();
+    std::uint32_t* other = merged + (e - b);
+    std::merge(cand + b, cand + f, cand + f, cand + e, merged,
+               [slot](std::uint32_t u, std::uint32_t v) { return slot[u] < slot[v]; });
+    std::uint32_t m = b, o = 0;
+    for (std::uint32_t q = 0; q < e - b; ++q) {
+      const std::uint32_t j = merged[q];
+      const bool fluid = kind[j] == Kind::kFluid;
+      cand[m] = j;
+      m += fluid;
+      other[o] = j;
+      o += !fluid;
+    }
+    cand_.fluid_end[i] = m;
+    std::copy(other, other + o, cand + m);
+    if (contact && kind[i] == Kind::kRigid) {
+      const Vec<D> xi = x[i];
+      for (std::uint32_t q = m; q < e; ++q) {
+        const std::uint32_t j = cand[q];
+        const Kind kj = kind[j];
+        if (((kj == Kind::kRigid && contact->body[j] != contact->body[i]) ||
+             (kj == Kind::kWall && contact->walls)) &&
+            (xi - x[j]).squaredNorm() < cr2)
+          cand_.contact_nbr.push_back(j);
+      }
+    }
+    cand_.contact_start[i + 1] = static_cast<std::uint32_t>(cand_.contact_nbr.size());
+  }
 }
 
 template <int D>

@@ -44,6 +44,17 @@ class NeighborList {
   // since build_candidates(), and the particles (owned and ghosts) are the same, in the same
   // rows.
   void refine(const ParticleStore<D>& s, double rc, double contact_range);
+  // After particles changed kind between fluid and rigid, or body, where they stand (a phase
+  // transition, Fuchs 2021 eq. 29; ghosts refreshed): sorts every candidate list again into
+  // its fluid and other neighbours by the kinds now and lists the contact candidates of the
+  // rigid particles now among them (those within contact->range + 2 skin of the positions now
+  // hold every pair that can come within range before the next search). Exact only for
+  // candidates built with rigid_all, which list every kind around fluid and rigid particles
+  // and rigid ones around walls (phase transitions come with conduction or diffusion, which
+  // asks for that), so that no change of kind takes a particle out of them; throws otherwise.
+  // refine() then makes the lists that candidates built at the positions searched at, with
+  // the kinds and bodies now, would give, so a run resumed there goes on to the bit.
+  void reclassify_candidates(const ParticleStore<D>& s, const ContactQuery* contact, double skin);
 
   const std::uint32_t* begin(std::size_t i) const { return cur_.nbr.data() + cur_.start[i]; }
   // Position of particle i's list in the storage (tables parallel to the lists use it).
@@ -70,7 +81,8 @@ class NeighborList {
   // Smallest distance between contact candidates on this rank (infinity if none).
   double min_contact_distance() const { return cur_.min_contact; }
   std::size_t bytes() const {
-    return cur_.bytes() + cand_.bytes() + others_.capacity() * sizeof(std::uint32_t) +
+    return cur_.bytes() + cand_.bytes() +
+           (others_.capacity() + slot_.capacity()) * sizeof(std::uint32_t) +
            (cell_start_.capacity() + cell_items_.capacity() + cell_of_.capacity()) *
                sizeof(std::uint32_t) +
            cell_kinds_.capacity();
@@ -118,8 +130,11 @@ class NeighborList {
   std::vector<std::uint32_t> cell_start_, cell_items_, cell_of_;
   std::vector<std::uint8_t> cell_kinds_;
   std::vector<std::uint32_t> others_;
-  Lists cur_;   // the lists the passes read
-  Lists cand_;  // Verlet candidates (build_candidates)
+  std::vector<std::uint32_t> slot_;  // position of each particle in cell_items_ (reclassify)
+  Lists cur_;                        // the lists the passes read
+  Lists cand_;                       // Verlet candidates (build_candidates)
+  double cand_range_ = 0;            // rc + skin of cand_
+  bool cand_rigid_all_ = false;      // cand_ built with rigid_all
   std::uint64_t generation_ = 0;
 };
 

@@ -353,9 +353,10 @@ std::string Simulation<D, K>::apply_phase_transitions() {
   if (out.melted + out.solidified > 0) {  // all ranks: the counts are global
     // Particles changed kind and body after this step's search: the ghosts and the contact
     // candidates are those of before (a melted particle would push its old neighbours as a
-    // wall, a merged body would keep contacts within itself), so search again and evaluate
-    // the rebuilt bodies' contact forces for the next step's first contact kick.
-    exchange_and_search();
+    // wall, a merged body would keep contacts within itself), so refresh the ghosts and sort
+    // the candidates again by kind (search again, without a skin), and evaluate the rebuilt
+    // bodies' contact forces for the next step's first contact kick.
+    exchange_and_search(Search::kKindsChanged);
     if (contact_) {
       Timer tc(timer(SpringDashpotContact<D>::kName));
       contact_->refresh(nl_, comm_);
@@ -583,6 +584,17 @@ void Simulation<D, K>::exchange_and_search(Search mode) {
   // Counted: searches that every rank count makes alike (not a rebalance's or a resume's).
   const bool counted = mode != Search::kAtReference;
   if (skin_ == 0) mode = Search::kFresh;  // the lists of the positions now are all there is
+  bool refreshed = false;
+  if (mode == Search::kKindsChanged) {
+    {
+      Timer tm(timer("halo_exchange"));
+      halo_.refresh_ghosts(s_);
+    }
+    Timer tm(timer("neighbor_search"));
+    const ContactQuery q = contact_query();
+    nl_.reclassify_candidates(s_, contact_ ? &q : nullptr, skin_);
+    refreshed = true;  // refined below
+  }
   if (mode == Search::kAsNeeded) {
     Timer tm(timer("neighbor_search"));
     mode = moved_half_the_skin() ? Search::kFresh : Search::kAsNeeded;
@@ -617,7 +629,7 @@ void Simulation<D, K>::exchange_and_search(Search mode) {
     Timer tm(timer("halo_exchange"));
     swap_positions();
     halo_.refresh_ghosts(s_);
-  } else {
+  } else if (!refreshed) {
     Timer tm(timer("halo_exchange"));
     halo_.refresh_ghosts(s_);
   }
@@ -629,14 +641,18 @@ void Simulation<D, K>::exchange_and_search(Search mode) {
   pk_.prepare(s_, nl_, kernel_);
 }
 
+template <int D, class K>
+ContactQuery Simulation<D, K>::contact_query() const {
+  if (!contact_) return {};
+  return ContactQuery{bodies_->body_index().data(), contact_->candidate_range(),
+                      contact_->with_walls()};
+}
+
 // The lists (without a skin) or the Verlet candidates of the positions in s_.x.
 template <int D, class K>
 void Simulation<D, K>::search_candidates() {
   Timer tm(timer("neighbor_search"));
-  ContactQuery q;
-  if (contact_)
-    q = ContactQuery{bodies_->body_index().data(), contact_->candidate_range(),
-                     contact_->with_walls()};
+  const ContactQuery q = contact_query();
   const ContactQuery* query = contact_ ? &q : nullptr;
   if (skin_ > 0)
     nl_.build_candidates(s_, grid_, halo_.ghost_box(), rc_, skin_, query, rigid_all());

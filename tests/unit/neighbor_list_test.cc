@@ -213,6 +213,94 @@ TEST(NeighborList, RefinedCandidatesMatchBruteForceAfterMoving) {
   }
 }
 
+// Particles that change kind between fluid and rigid, or body, where they stand (phase
+// transitions) after candidates listed with rigid_all: sorted again by the kinds now, the
+// candidates give exactly the lists of the new kinds after moving, and, refined at the
+// positions searched at, a fresh search's lists pair for pair (a resumed run's).
+TEST(NeighborList, ReclassifiedCandidatesFollowPhaseChanges) {
+  const double rc = 0.3, range = 0.12, skin = 0.08;
+  const std::array<bool, 2> periodic = {true, false};
+  OneRank<2> one(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc + skin, periodic);
+  const CellGrid<2>& grid = one.grid;
+  Halo<2>& halo = one.halo;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> angle(0.0, 2 * std::numbers::pi);
+  std::uniform_real_distribution<double> length(0.0, 0.4999 * skin);
+  for (const bool walls : {false, true}) {
+    ParticleStore<2> s;
+    std::vector<std::int32_t> body;
+    mixed_particles(s, body);
+    halo.migrate(s);
+    halo.build_ghosts(s);
+    auto image_bodies = [&] {  // the owned particles' bodies onto their periodic images
+      body.resize(s.owned());
+      for (std::size_t k = s.owned(); k < s.size(); ++k)
+        body.push_back(body[static_cast<std::size_t>(s.id[k])]);
+    };
+    image_bodies();
+    ContactQuery q{body.data(), range, walls};
+    NeighborList<2> nl;
+    nl.build_candidates(s, grid, halo.ghost_box(), rc, skin, &q, true);
+    const std::vector<Vec<2>> searched(s.x.data(), s.x.data() + s.owned());
+    // Every 7th fluid particle freezes into body 0, every 4th rigid one melts, body 1 merges
+    // into body 2 (its contacts with 2 end) and body 0 above y = 0.85 becomes body 3 (a split:
+    // contacts between the halves begin).
+    std::size_t froze = 0, melted = 0;
+    for (std::size_t i = 0; i < s.owned(); ++i) {
+      if (s.kind[i] == Kind::kFluid && i % 7 == 0) {
+        s.kind[i] = Kind::kRigid;
+        body[i] = 0;
+        ++froze;
+      } else if (s.kind[i] == Kind::kRigid && i % 4 == 0) {
+        s.kind[i] = Kind::kFluid;
+        body[i] = -1;
+        ++melted;
+      } else if (s.kind[i] == Kind::kRigid && body[i] == 1) {
+        body[i] = 2;
+      } else if (s.kind[i] == Kind::kRigid && body[i] == 0 && s.x[i][1] > 0.85) {
+        body[i] = 3;
+      }
+    }
+    ASSERT_GT(froze, 10u);
+    ASSERT_GT(melted, 10u);
+    image_bodies();
+    q.body = body.data();
+    for (std::size_t i = 0; i < s.owned(); ++i) {
+      const double a = angle(rng), l = length(rng);
+      s.x[i] = searched[i] + l * Vec<2>(std::cos(a), std::sin(a));
+    }
+    halo.refresh_ghosts(s);
+    nl.reclassify_candidates(s, &q, skin);
+    nl.refine(s, rc, range);
+    expect_mixed_lists(s, nl, body, rc, range, true, walls, periodic, 1.7);
+    std::copy(searched.begin(), searched.end(), s.x.data());
+    halo.refresh_ghosts(s);
+    nl.refine(s, rc, range);
+    NeighborList<2> fresh;
+    fresh.build(s, grid, halo.ghost_box(), rc, &q, true);
+    for (std::size_t i = 0; i < s.owned(); ++i) {
+      ASSERT_TRUE(std::equal(nl.begin(i), nl.end(i), fresh.begin(i), fresh.end(i)))
+          << "particle " << i;
+      ASSERT_EQ(nl.fluid_end(i) - nl.begin(i), fresh.fluid_end(i) - fresh.begin(i));
+      ASSERT_TRUE(std::equal(nl.contacts_begin(i), nl.contacts_end(i), fresh.contacts_begin(i),
+                             fresh.contacts_end(i)));
+    }
+  }
+}
+
+// Candidates listed without rigid_all leave out what a change of kind would need.
+TEST(NeighborList, ReclassifyingNeedsCandidatesOfEveryKind) {
+  const double rc = 0.3, skin = 0.08;
+  OneRank<2> one(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc + skin, {false, false});
+  ParticleStore<2> s;
+  std::vector<std::int32_t> body;
+  mixed_particles(s, body);
+  one.halo.build_ghosts(s);
+  NeighborList<2> nl;
+  nl.build_candidates(s, one.grid, one.halo.ghost_box(), rc, skin, nullptr, false);
+  EXPECT_THROW(nl.reclassify_candidates(s, nullptr, skin), std::logic_error);
+}
+
 TEST(NeighborList, OrderIsCanonical) {
   // The same particles stored in two different orders give the same neighbour id sequences,
   // fluid neighbours and walls alike.
