@@ -90,7 +90,18 @@ void NeighborList<D>::reclassify_candidates(const ParticleStore<D>& s, const Con
 }
 
 template <int D>
-void NeighborList<D>::refine(const ParticleStore<D>& s, double rc, double contact_range) {
+void NeighborList<D>::refine(const ParticleStore<D>& s, double rc, double contact_range,
+                             double* r2_out) {
+  if (r2_out)
+    refine_lists<true>(s, rc, contact_range, r2_out);
+  else
+    refine_lists<false>(s, rc, contact_range, nullptr);
+}
+
+template <int D>
+template <bool kSquaredDistances>
+void NeighborList<D>::refine_lists(const ParticleStore<D>& s, double rc, double contact_range,
+                                   double* r2_out) {
   ++generation_;
   const std::size_t owned = s.owned();
   if (cand_.start.size() != owned + 1)
@@ -115,17 +126,18 @@ void NeighborList<D>::refine(const ParticleStore<D>& s, double rc, double contac
     // Branch-free, as in the search: every candidate is written, the count advances for the
     // pairs kept. The fluid neighbours stay first.
     const std::uint32_t f = cand_.fluid_end[i], e = cand_.start[i + 1];
-    for (std::uint32_t q = cand_.start[i]; q < f; ++q) {
+    // The squared distance, as the pair kernel would compute it (PairKernel::distances), is
+    // written with the index and kept with it.
+    const auto test = [&](std::uint32_t q) {
       const std::uint32_t j = cand[q];
+      const double d2 = (xi - x[j]).squaredNorm();
       out[m] = j;
-      m += static_cast<std::size_t>((xi - x[j]).squaredNorm() < rc2);
-    }
+      if constexpr (kSquaredDistances) r2_out[m] = d2;
+      m += static_cast<std::size_t>(d2 < rc2);
+    };
+    for (std::uint32_t q = cand_.start[i]; q < f; ++q) test(q);
     o.fluid_end[i] = static_cast<std::uint32_t>(m);
-    for (std::uint32_t q = f; q < e; ++q) {
-      const std::uint32_t j = cand[q];
-      out[m] = j;
-      m += static_cast<std::size_t>((xi - x[j]).squaredNorm() < rc2);
-    }
+    for (std::uint32_t q = f; q < e; ++q) test(q);
     o.start[i + 1] = static_cast<std::uint32_t>(m);
     for (std::uint32_t q = cand_.contact_start[i]; q < cand_.contact_start[i + 1]; ++q) {
       const std::uint32_t j = cand_.contact_nbr[q];

@@ -42,8 +42,10 @@ class NeighborList {
   // The lists of the current positions: the candidates within rc (contacts within
   // contact_range), in the candidates' order. Exact while no particle has moved half the skin
   // since build_candidates(), and the particles (owned and ghosts) are the same, in the same
-  // rows.
-  void refine(const ParticleStore<D>& s, double rc, double contact_range);
+  // rows. With r2_out (room for candidate_pairs() values, e.g. PairKernel::squared_distances_for)
+  // it also writes the squared distance of every pair kept, parallel to the lists, as it tests
+  // them, so that the pair kernel need not gather the positions of every pair again.
+  void refine(const ParticleStore<D>& s, double rc, double contact_range, double* r2_out = nullptr);
   // After particles changed kind between fluid and rigid, or body, where they stand (a phase
   // transition, Fuchs 2021 eq. 29; ghosts refreshed): sorts every candidate list again into
   // its fluid and other neighbours by the kinds now and lists the contact candidates of the
@@ -68,6 +70,7 @@ class NeighborList {
     return cur_.nbr.data() + cur_.fluid_end[i];
   }
   std::size_t pairs() const { return cur_.pairs; }
+  std::size_t candidate_pairs() const { return cand_.pairs; }
   // Contact candidates of owned rigid particle i (empty without a ContactQuery).
   const std::uint32_t* contacts_begin(std::size_t i) const {
     return cur_.contact_nbr.data() + cur_.contact_start[i];
@@ -121,6 +124,8 @@ class NeighborList {
              sizeof(std::uint32_t);
     }
   };
+  template <bool kSquaredDistances>
+  void refine_lists(const ParticleStore<D>& s, double rc, double contact_range, double* r2_out);
   void build_into(Lists& out, const ParticleStore<D>& s, const CellGrid<D>& grid,
                   const CellBox<D>& box, double rc, const ContactQuery* contact, bool rigid_all);
 

@@ -39,24 +39,35 @@ class PairKernel {
   // unchanged) and, with kTable, evaluates every pair of the owned particles' lists.
   template <class K>
   void prepare(const ParticleStore<D>& s, const NeighborList<D>& nl, const K& k) {
-    s_ = &s;
-    kernel_ = &k;
-    evaluate_ = [](const void* kernel, std::size_t n, const double* r, double* w, double* dw) {
-      static_cast<const K*>(kernel)->evaluate(n, r, w, dw);
-    };
-    generation_ = nl.generation();
+    bind(s, nl, k);
     if (storage_ == Storage::kStream) return;
     const std::size_t n = nl.pairs();
-    if (r_.capacity() < n) {  // 25% spare, as the list keeps (resize alone would double)
-      r_.reserve(n + n / 4);
-      w_.reserve(n + n / 4);
-      dw_.reserve(n + n / 4);
-    }
-    r_.resize(n);
-    w_.resize(n);
-    dw_.resize(n);
+    fit(r_, n);
     for (std::size_t i = 0; i < s.owned(); ++i) distances(nl, i, r_.data() + nl.first(i));
-    k.evaluate(n, r_.data(), w_.data(), dw_.data());
+    evaluate_table(n, k);
+  }
+
+  // Verlet lists: room for the squared distances that nl.refine() writes as it tests the
+  // candidates, so that prepare_refined() takes them instead of gathering the positions of
+  // every pair a second time (about a third of prepare() in the 3D powder box); nullptr with
+  // kStream, which keeps no table.
+  double* squared_distances_for(const NeighborList<D>& nl) {
+    if (storage_ == Storage::kStream) return nullptr;
+    fit(r_, nl.candidate_pairs());
+    filled_by_ = nl.generation() + 1;  // the refinement that comes next
+    return r_.data();
+  }
+  // As prepare(), after nl.refine() wrote the squared distances into squared_distances_for():
+  // the same bits, r = sqrt(|x_i - x_j|^2) computed alike.
+  template <class K>
+  void prepare_refined(const ParticleStore<D>& s, const NeighborList<D>& nl, const K& k) {
+    if (storage_ == Storage::kStream) return prepare(s, nl, k);
+    if (filled_by_ != nl.generation())
+      throw std::logic_error("pair kernel: refine() did not write the squared distances");
+    bind(s, nl, k);
+    const std::size_t n = nl.pairs();
+    for (std::size_t e = 0; e < n; ++e) r_[e] = std::sqrt(r_[e]);
+    evaluate_table(n, k);
   }
 
   // The values of particle i's pairs. With kStream they live in a scratch buffer until the
@@ -86,6 +97,30 @@ class PairKernel {
   }
 
  private:
+  template <class K>
+  void bind(const ParticleStore<D>& s, const NeighborList<D>& nl, const K& k) {
+    s_ = &s;
+    kernel_ = &k;
+    evaluate_ = [](const void* kernel, std::size_t n, const double* r, double* w, double* dw) {
+      static_cast<const K*>(kernel)->evaluate(n, r, w, dw);
+    };
+    generation_ = nl.generation();
+  }
+  // W and dW/dr of the first n distances in r_.
+  template <class K>
+  void evaluate_table(std::size_t n, const K& k) {
+    fit(w_, n);
+    fit(dw_, n);
+    k.evaluate(n, r_.data(), w_.data(), dw_.data());
+  }
+  // At least n values; grown with 25% spare, as the list keeps, and never shrunk, so that
+  // sizes changing from step to step neither reallocate nor fill.
+  static void fit(std::vector<double>& v, std::size_t n) {
+    if (v.size() >= n) return;
+    v.reserve(n + n / 4);  // exactly: resize() alone would double the capacity
+    v.resize(n + n / 4);
+  }
+
   // |x_i - x_j| of particle i's pairs, as Eigen's norm() (sqrt of squaredNorm) computes it:
   // gathered first, so that the square roots vectorise.
   void distances(const NeighborList<D>& nl, std::size_t i, double* out) const {
@@ -103,6 +138,8 @@ class PairKernel {
   const void* kernel_ = nullptr;
   void (*evaluate_)(const void*, std::size_t, const double*, double*, double*) = nullptr;
   std::uint64_t generation_ = std::numeric_limits<std::uint64_t>::max();  // matches no list
+  // The generation of the list whose refine() wrote the squared distances into r_.
+  std::uint64_t filled_by_ = std::numeric_limits<std::uint64_t>::max();
   mutable std::vector<double> r_, w_, dw_;  // the table, or (kStream) the scratch
 };
 

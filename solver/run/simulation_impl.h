@@ -635,10 +635,14 @@ void Simulation<D, K>::exchange_and_search(Search mode) {
   }
   if (skin_ > 0) {
     Timer tm(timer("neighbor_search"));
-    nl_.refine(s_, rc_, contact_ ? contact_->candidate_range() : 0.0);
+    nl_.refine(s_, rc_, contact_ ? contact_->candidate_range() : 0.0,
+               pk_.squared_distances_for(nl_));
   }
   Timer tm(timer("pair_kernel"));
-  pk_.prepare(s_, nl_, kernel_);
+  if (skin_ > 0)
+    pk_.prepare_refined(s_, nl_, kernel_);
+  else
+    pk_.prepare(s_, nl_, kernel_);
 }
 
 template <int D, class K>

@@ -8,7 +8,9 @@
 #include <random>
 #include <set>
 
+#include "solver/core/kernel.h"
 #include "solver/core/neighbor_list.h"
+#include "solver/core/pair_kernel.h"
 #include "solver/parallel/halo.h"
 
 namespace sph {
@@ -211,6 +213,48 @@ TEST(NeighborList, RefinedCandidatesMatchBruteForceAfterMoving) {
       }
     }
   }
+}
+
+// The pair kernel taken from the squared distances refine() wrote as it tested the
+// candidates (the Verlet path of every step) equals, to the bit, the one evaluated from the
+// positions of the refined lists; and it refuses squared distances no refine() wrote.
+TEST(NeighborList, RefinedSquaredDistancesGiveThePairKernelOfThePositions) {
+  const double rc = 0.3, range = 0.12, skin = 0.08;
+  OneRank<2> one(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc + skin, {true, false});
+  ParticleStore<2> s;
+  std::vector<std::int32_t> body;
+  mixed_particles(s, body);
+  one.halo.migrate(s);
+  one.halo.build_ghosts(s);
+  for (std::size_t k = s.owned(); k < s.size(); ++k)
+    body.push_back(body[static_cast<std::size_t>(s.id[k])]);
+  ContactQuery q{body.data(), range, true};
+  NeighborList<2> nl;
+  nl.build_candidates(s, one.grid, one.halo.ghost_box(), rc, skin, &q, true);
+  const QuinticSpline<2> kernel(rc / 3);
+  PairKernel<2> fused, direct;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> step(-0.11 * skin, 0.11 * skin);
+  for (int round = 0; round < 3; ++round) {  // the spare room of r2 is reused
+    for (std::size_t i = 0; i < s.owned(); ++i) s.x[i] += Vec<2>(step(rng), step(rng));
+    one.halo.refresh_ghosts(s);
+    nl.refine(s, rc, range, fused.squared_distances_for(nl));
+    ASSERT_GT(nl.pairs(), 1000u);
+    ASSERT_LT(nl.pairs(), nl.candidate_pairs()) << "no candidate was left out";
+    fused.prepare_refined(s, nl, kernel);
+    direct.prepare(s, nl, kernel);
+    for (std::size_t i = 0; i < s.owned(); ++i) {
+      const PairValues a = fused.of(nl, i), b = direct.of(nl, i);
+      for (std::ptrdiff_t e = 0; e < nl.end(i) - nl.begin(i); ++e) {
+        ASSERT_EQ(a.r[e], b.r[e]) << "particle " << i << " pair " << e;
+        ASSERT_EQ(a.w[e], b.w[e]);
+        ASSERT_EQ(a.dw[e], b.dw[e]);
+        ASSERT_EQ(a.r[e], (s.x[i] - s.x[nl.begin(i)[e]]).norm());
+      }
+    }
+  }
+  nl.refine(s, rc, range);  // without the squared distances
+  EXPECT_THROW(fused.prepare_refined(s, nl, kernel), std::logic_error);
 }
 
 // Particles that change kind between fluid and rigid, or body, where they stand (phase
