@@ -105,6 +105,7 @@ class PairKernel {
       static_cast<const K*>(kernel)->evaluate(n, r, w, dw);
     };
     generation_ = nl.generation();
+    filled_by_ = std::numeric_limits<std::uint64_t>::max();  // the squared distances are used
   }
   // W and dW/dr of the first n distances in r_.
   template <class K>

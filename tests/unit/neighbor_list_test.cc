@@ -217,7 +217,8 @@ TEST(NeighborList, RefinedCandidatesMatchBruteForceAfterMoving) {
 
 // The pair kernel taken from the squared distances refine() wrote as it tested the
 // candidates (the Verlet path of every step) equals, to the bit, the one evaluated from the
-// positions of the refined lists; and it refuses squared distances no refine() wrote.
+// positions of the refined lists; and it refuses squared distances no refine() wrote or that it
+// took already.
 TEST(NeighborList, RefinedSquaredDistancesGiveThePairKernelOfThePositions) {
   const double rc = 0.3, range = 0.12, skin = 0.08;
   OneRank<2> one(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc + skin, {true, false});
@@ -253,6 +254,8 @@ TEST(NeighborList, RefinedSquaredDistancesGiveThePairKernelOfThePositions) {
       }
     }
   }
+  // Once taken, the square roots are not taken again.
+  EXPECT_THROW(fused.prepare_refined(s, nl, kernel), std::logic_error);
   nl.refine(s, rc, range);  // without the squared distances
   EXPECT_THROW(fused.prepare_refined(s, nl, kernel), std::logic_error);
 }
