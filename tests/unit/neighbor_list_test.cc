@@ -141,6 +141,30 @@ void mixed_particles(ParticleStore<2>& s, std::vector<std::int32_t>& body) {
   }
 }
 
+// Candidates refined with every particle back where they were searched (ghosts refreshed)
+// are a fresh search's lists there, pair for pair: same order, same fluid part, same contacts.
+::testing::AssertionResult refined_where_searched_is_fresh(ParticleStore<2>& s, OneRank<2>& one,
+                                                           NeighborList<2>& nl,
+                                                           const std::vector<Vec<2>>& searched,
+                                                           const ContactQuery& q, double rc,
+                                                           double range, bool rigid_all) {
+  std::copy(searched.begin(), searched.end(), s.x.data());
+  one.halo.refresh_ghosts(s);
+  nl.refine(s, rc, range);
+  NeighborList<2> fresh;
+  fresh.build(s, one.grid, one.halo.ghost_box(), rc, &q, rigid_all);
+  for (std::size_t i = 0; i < s.owned(); ++i) {
+    if (!std::equal(nl.begin(i), nl.end(i), fresh.begin(i), fresh.end(i)))
+      return ::testing::AssertionFailure() << "list of particle " << i;
+    if (nl.fluid_end(i) - nl.begin(i) != fresh.fluid_end(i) - fresh.begin(i))
+      return ::testing::AssertionFailure() << "fluid neighbours of particle " << i;
+    if (!std::equal(nl.contacts_begin(i), nl.contacts_end(i), fresh.contacts_begin(i),
+                    fresh.contacts_end(i)))
+      return ::testing::AssertionFailure() << "contacts of particle " << i;
+  }
+  return ::testing::AssertionSuccess();
+}
+
 TEST(NeighborList, MixedKindsMatchBruteForce) {
   const double rc = 0.3, range = 0.12;
   OneRank<2> one(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc, {false, false});
@@ -199,18 +223,7 @@ TEST(NeighborList, RefinedCandidatesMatchBruteForceAfterMoving) {
       expect_mixed_lists(s, nl, body, rc, range, rigid_all, walls, periodic, 1.7);
       // The refined lists keep the candidates' order, which is canonical at the searched
       // positions: refined there, they are a fresh search's lists, pair for pair.
-      std::copy(searched.begin(), searched.end(), s.x.data());
-      halo.refresh_ghosts(s);
-      nl.refine(s, rc, range);
-      NeighborList<2> fresh;
-      fresh.build(s, grid, halo.ghost_box(), rc, &q, rigid_all);
-      for (std::size_t i = 0; i < s.owned(); ++i) {
-        ASSERT_TRUE(std::equal(nl.begin(i), nl.end(i), fresh.begin(i), fresh.end(i)))
-            << "particle " << i;
-        ASSERT_EQ(nl.fluid_end(i) - nl.begin(i), fresh.fluid_end(i) - fresh.begin(i));
-        ASSERT_TRUE(std::equal(nl.contacts_begin(i), nl.contacts_end(i), fresh.contacts_begin(i),
-                               fresh.contacts_end(i)));
-      }
+      ASSERT_TRUE(refined_where_searched_is_fresh(s, one, nl, searched, q, rc, range, rigid_all));
     }
   }
 }
@@ -320,18 +333,7 @@ TEST(NeighborList, ReclassifiedCandidatesFollowPhaseChanges) {
     nl.reclassify_candidates(s, &q, skin);
     nl.refine(s, rc, range);
     expect_mixed_lists(s, nl, body, rc, range, true, walls, periodic, 1.7);
-    std::copy(searched.begin(), searched.end(), s.x.data());
-    halo.refresh_ghosts(s);
-    nl.refine(s, rc, range);
-    NeighborList<2> fresh;
-    fresh.build(s, grid, halo.ghost_box(), rc, &q, true);
-    for (std::size_t i = 0; i < s.owned(); ++i) {
-      ASSERT_TRUE(std::equal(nl.begin(i), nl.end(i), fresh.begin(i), fresh.end(i)))
-          << "particle " << i;
-      ASSERT_EQ(nl.fluid_end(i) - nl.begin(i), fresh.fluid_end(i) - fresh.begin(i));
-      ASSERT_TRUE(std::equal(nl.contacts_begin(i), nl.contacts_end(i), fresh.contacts_begin(i),
-                             fresh.contacts_end(i)));
-    }
+    ASSERT_TRUE(refined_where_searched_is_fresh(s, one, nl, searched, q, rc, range, true));
   }
 }
 
