@@ -11,9 +11,9 @@
 # the paper's dx = 0.1 (67k particles, 160k steps, about 2.2 h on two idle cores; with the
 # paper's c = 1e3 it stopped on the solid-fraction guard at t = 0.623, see phase_change.md);
 # SPHD_PAPER=2 also the powder scenes at the paper's resolution (2D: 53k particles, about
-# 2.3 h on two idle cores; 3D: 113k particles, 257k steps, about 6.5 h on two idle cores
-# built with -DSPHD_NATIVE=ON, 700 steps a minute before its grains melt and 620 while they
-# melt fast), meant to be continued over
+# 2.3 h on two idle cores; 3D: 113k particles, 258k steps, about 6.5 h on two idle cores
+# built with -DSPHD_NATIVE=ON, 700 steps a minute before its grains melt, 655 to 740 while
+# they melt and 470 while the melt freezes), meant to be continued over
 # several invocations (keep OUT_DIR outside a work tree that is cleaned between them).
 # SPHD_SCENES="powder_2d ..." runs (and renders) only the named scenes, paper-resolution ones
 # included whatever SPHD_PAPER says: gastric_04, powder_2d_coarse, powder_3d_coarse,
@@ -88,6 +88,8 @@ draw gastric_04 gastric_dx04
 draw gastric_01 gastric_dx01 --frames 5
 draw powder_2d powder_grains_2d --scalar temperature --speed-max 800 --labels grain,melt,gas \
   --frames 8
+draw powder_3d powder_melting_3d_xy --scalar temperature --labels grain,melt,gas --frames 6 \
+  --plane xy --frames-only
 draw powder_3d powder_melting_3d_xz --scalar temperature --labels grain,melt,gas --frames 6 \
   --plane xz
 draw powder_2d_coarse powder_grains_2d_coarse --scalar temperature --speed-max 800 \
