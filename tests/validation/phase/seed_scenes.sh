@@ -84,20 +84,18 @@ draw() {  # name result-name render-arguments...: renders a finished, selected r
     /usr/bin/python3 "$render" "$out/$name/result.h5" "$reports" "$figure" "$@"
   fi
 }
+draw_box() {  # name figure-prefix: the 3D powder box from above (frames) and from the side
+  draw "$1" "$2_xy" --scalar temperature --labels grain,melt,gas --frames 6 --plane xy --frames-only
+  draw "$1" "$2_xz" --scalar temperature --labels grain,melt,gas --frames 6 --plane xz
+}
 draw gastric_04 gastric_dx04
 draw gastric_01 gastric_dx01 --frames 5
 draw powder_2d powder_grains_2d --scalar temperature --speed-max 800 --labels grain,melt,gas \
   --frames 8
-draw powder_3d powder_melting_3d_xy --scalar temperature --labels grain,melt,gas --frames 6 \
-  --plane xy --frames-only
-draw powder_3d powder_melting_3d_xz --scalar temperature --labels grain,melt,gas --frames 6 \
-  --plane xz
+draw_box powder_3d powder_melting_3d
 draw powder_2d_coarse powder_grains_2d_coarse --scalar temperature --speed-max 800 \
   --labels grain,melt,gas --frames 8
-draw powder_3d_coarse powder_melting_3d_coarse_xy --scalar temperature --labels grain,melt,gas \
-  --frames 6 --plane xy --frames-only
-draw powder_3d_coarse powder_melting_3d_coarse_xz --scalar temperature --labels grain,melt,gas \
-  --frames 6 --plane xz
+draw_box powder_3d_coarse powder_melting_3d_coarse
 draw powder_slice_2d powder_melting_slice_2d --scalar temperature --speed-max 5 \
   --labels grain,melt,gas --frames 8
 /usr/bin/python3 "$root/tests/validation/phase/scene_figures.py" "$out"
