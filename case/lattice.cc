@@ -1,5 +1,6 @@
 #include "case/lattice.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace sph {
@@ -15,11 +16,20 @@ struct IndexRange {
   }
 };
 
+// A lattice index as int64. Validation keeps the domain within kMaxLatticeCellsPerAxis of the
+// origin (case/case_limits.h); the clamp only keeps a conversion defined for callers that did
+// not validate (a double beyond the int64 range converts to anything).
+std::int64_t to_index(double v) {
+  constexpr double kLimit = 4.0e18;
+  if (std::isnan(v)) return 0;
+  return static_cast<std::int64_t>(std::clamp(v, -kLimit, kLimit));
+}
+
 IndexRange index_range(const Aabb& box, const LatticeSpec& s, double spacing) {
   IndexRange r;
   for (int a = 0; a < s.dim; ++a) {
-    r.lo[a] = static_cast<std::int64_t>(std::ceil((box.lo[a] - s.origin[a]) / spacing - 0.5));
-    r.hi[a] = static_cast<std::int64_t>(std::floor((box.hi[a] - s.origin[a]) / spacing - 0.5));
+    r.lo[a] = to_index(std::ceil((box.lo[a] - s.origin[a]) / spacing - 0.5));
+    r.hi[a] = to_index(std::floor((box.hi[a] - s.origin[a]) / spacing - 0.5));
   }
   return r;
 }

@@ -3,12 +3,17 @@
 #include <google/protobuf/io/tokenizer.h>
 #include <google/protobuf/text_format.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <functional>
-#include <sstream>
 
+#include "case/case_bounds.h"
+#include "case/case_limits.h"
+#include "case/data_lines.h"
 #include "case/reference_data.h"
+#include "case/text_nesting.h"
 
 namespace sph {
 namespace {
@@ -20,46 +25,82 @@ class CollectErrors : public google::protobuf::io::ErrorCollector {
     if (!text.empty()) text += "; ";
     text += "line " + std::to_string(line + 1) + ", column " + std::to_string(column + 1) + ": " +
             message;
+    if (message.find("recursion limit") != std::string::npos) too_deep = true;
   }
   std::string text;
+  bool too_deep = false;
 };
 
-std::vector<v1::Vec3> read_point_file(const std::string& path, const std::string& field) {
+// Reads "x y [z]" lines, at most `limit` points (the smaller of the per-file and the case's
+// remaining budget; `limit_text` says which), so that a huge file is refused, not read whole.
+std::vector<v1::Vec3> read_point_file(const std::string& path, const std::string& field, int limit,
+                                      const std::string& limit_text) {
   std::ifstream in(path);
   if (!in) throw CaseLoadError(field + ": cannot read point file '" + path + "'");
   std::vector<v1::Vec3> points;
+  DataLines lines(in, path);
   std::string line;
-  int lineno = 0;
-  while (std::getline(in, line)) {
-    ++lineno;
-    auto hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
-    std::istringstream ls(line);
-    double xyz[3] = {0, 0, 0};
-    int n = 0;
-    while (n < 3 && ls >> xyz[n]) ++n;
-    if (n == 0 && ls.eof()) continue;
-    std::string rest;
-    if (n < 2 || (ls >> rest))
-      throw CaseLoadError(field + ": " + path + ":" + std::to_string(lineno) +
-                          ": expected 'x y' or 'x y z'");
-    v1::Vec3 p;
-    p.set_x(xyz[0]);
-    p.set_y(xyz[1]);
-    p.set_z(xyz[2]);
-    points.push_back(p);
+  try {
+    while (lines.next(line)) {
+      auto hash = line.find('#');
+      if (hash != std::string::npos) line.resize(hash);
+      double xyz[3] = {0, 0, 0};
+      int n = 0;
+      const char* at = line.c_str();
+      while (n < 3) {
+        char* end = nullptr;
+        const double v = std::strtod(at, &end);
+        if (end == at) break;
+        xyz[n++] = v;
+        at = end;
+      }
+      while (std::isspace(static_cast<unsigned char>(*at))) ++at;
+      if (n == 0 && *at == '\0') continue;
+      if (n < 2 || *at != '\0')
+        throw CaseLoadError(field + ": " + path + ":" + std::to_string(lines.line_number()) +
+                            ": expected 'x y' or 'x y z'");
+      if (static_cast<int>(points.size()) >= limit)
+        throw CaseLoadError(field + ": " + path + " has more than " + std::to_string(limit) +
+                            " points; " + limit_text);
+      v1::Vec3 p;
+      p.set_x(xyz[0]);
+      p.set_y(xyz[1]);
+      p.set_z(xyz[2]);
+      points.push_back(p);
+    }
+  } catch (const CaseLoadError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw CaseLoadError(field + ": " + e.what());
   }
   return points;
 }
 
-void inline_shape(v1::Shape& s, const std::string& base, const std::string& field) {
+// Explicit points the case holds (inlined or read so far), for the per-case budget.
+struct PointBudget {
+  int used = 0;
+};
+
+// Recursion over the shape tree: callers check its depth first (measure_shape).
+void inline_shape(v1::Shape& s, const std::string& base, const std::string& field,
+                  PointBudget& budget) {
   switch (s.kind_case()) {
     case v1::Shape::kPoints: {
       auto* ps = s.mutable_points();
       if (!ps->file().empty()) {
         std::filesystem::path p(ps->file());
         if (p.is_relative()) p = std::filesystem::path(base) / p;
-        for (auto& v : read_point_file(p.string(), field + ".points.file")) *ps->add_points() = v;
+        const int left = std::max(0, kMaxPointsPerCase - budget.used);
+        const bool per_file = kMaxPointsPerFile <= left;
+        const std::string limit_text =
+            per_file
+                ? "the limit is " + std::to_string(kMaxPointsPerFile) + " points per file"
+                : "the limit is " + std::to_string(kMaxPointsPerCase) + " points per case and " +
+                      std::to_string(budget.used) + " are already in it";
+        auto points = read_point_file(p.string(), field + ".points.file",
+                                      std::min(kMaxPointsPerFile, left), limit_text);
+        budget.used += static_cast<int>(points.size());
+        for (auto& v : points) *ps->add_points() = std::move(v);
         ps->clear_file();
       }
       break;
@@ -67,21 +108,22 @@ void inline_shape(v1::Shape& s, const std::string& base, const std::string& fiel
     case v1::Shape::kUnion:
       for (int i = 0; i < s.union_().shapes_size(); ++i)
         inline_shape(*s.mutable_union_()->mutable_shapes(i), base,
-                     field + ".union.shapes[" + std::to_string(i) + "]");
+                     field + ".union.shapes[" + std::to_string(i) + "]", budget);
       break;
     case v1::Shape::kIntersection:
       for (int i = 0; i < s.intersection().shapes_size(); ++i)
         inline_shape(*s.mutable_intersection()->mutable_shapes(i), base,
-                     field + ".intersection.shapes[" + std::to_string(i) + "]");
+                     field + ".intersection.shapes[" + std::to_string(i) + "]", budget);
       break;
     case v1::Shape::kDifference:
-      inline_shape(*s.mutable_difference()->mutable_base(), base, field + ".difference.base");
+      inline_shape(*s.mutable_difference()->mutable_base(), base, field + ".difference.base",
+                   budget);
       for (int i = 0; i < s.difference().subtract_size(); ++i)
         inline_shape(*s.mutable_difference()->mutable_subtract(i), base,
-                     field + ".difference.subtract[" + std::to_string(i) + "]");
+                     field + ".difference.subtract[" + std::to_string(i) + "]", budget);
       break;
     case v1::Shape::kShell:
-      inline_shape(*s.mutable_shell()->mutable_inner(), base, field + ".shell.inner");
+      inline_shape(*s.mutable_shell()->mutable_inner(), base, field + ".shell.inner", budget);
       break;
     default:
       break;
@@ -93,17 +135,36 @@ void inline_shape(v1::Shape& s, const std::string& base, const std::string& fiel
 std::string read_text_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CaseLoadError("cannot read '" + path + "'");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  // Read in pieces and stop past the limit, so that a huge file is not read whole.
+  std::string text;
+  char chunk[65536];
+  while (in) {
+    in.read(chunk, sizeof chunk);
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxCaseFileBytes)
+      throw CaseLoadError(path + ": the file is larger than " +
+                          std::to_string(kMaxCaseFileBytes >> 20) + " MiB; the limit is " +
+                          std::to_string(kMaxCaseFileBytes >> 20) + " MiB");
+  }
+  if (in.bad()) throw CaseLoadError("cannot read '" + path + "'");
+  return text;
 }
 
 v1::Case parse_case_text(const std::string& text) {
   google::protobuf::TextFormat::Parser parser;
   CollectErrors errors;
   parser.RecordErrorsTo(&errors);
+  // Without a limit a deeply nested text recurses until the stack overflows.
+  parser.SetRecursionLimit(kMaxTextNesting);
   v1::Case c;
   if (!parser.ParseFromString(text, &c)) {
+    if (errors.too_deep) {
+      const std::string why = describe_deep_nesting(text);
+      throw CaseLoadError((why.empty() ? std::string() : why + " (") +
+                          "the case text nests messages deeper than the parser's limit of " +
+                          std::to_string(kMaxTextNesting) + ": " + errors.text +
+                          (why.empty() ? "" : ")"));
+    }
     throw CaseLoadError("malformed case text: " +
                         (errors.text.empty() ? std::string("parse error") : errors.text));
   }
@@ -111,15 +172,28 @@ v1::Case parse_case_text(const std::string& text) {
 }
 
 void inline_point_files(v1::Case& c, const std::string& base_dir) {
+  // The walk below recurses over shapes: refuse a tree deeper than validation allows first.
+  PointBudget budget;
+  auto region = [&](v1::Shape& s, const std::string& field) {
+    const ShapeTreeSize n = measure_shape(s);
+    if (n.depth > kMaxShapeDepth) throw CaseLoadError(field + ": " + shape_depth_error(n.depth));
+    budget.used += n.points;
+  };
+  for (int i = 0; i < c.fluids_size(); ++i)
+    region(*c.mutable_fluids(i)->mutable_shape(), "fluids[" + std::to_string(i) + "].shape");
+  for (int i = 0; i < c.walls_size(); ++i)
+    region(*c.mutable_walls(i)->mutable_shape(), "walls[" + std::to_string(i) + "].shape");
+  for (int i = 0; i < c.bodies_size(); ++i)
+    region(*c.mutable_bodies(i)->mutable_shape(), "bodies[" + std::to_string(i) + "].shape");
   for (int i = 0; i < c.fluids_size(); ++i)
     inline_shape(*c.mutable_fluids(i)->mutable_shape(), base_dir,
-                 "fluids[" + std::to_string(i) + "].shape");
+                 "fluids[" + std::to_string(i) + "].shape", budget);
   for (int i = 0; i < c.walls_size(); ++i)
     inline_shape(*c.mutable_walls(i)->mutable_shape(), base_dir,
-                 "walls[" + std::to_string(i) + "].shape");
+                 "walls[" + std::to_string(i) + "].shape", budget);
   for (int i = 0; i < c.bodies_size(); ++i)
     inline_shape(*c.mutable_bodies(i)->mutable_shape(), base_dir,
-                 "bodies[" + std::to_string(i) + "].shape");
+                 "bodies[" + std::to_string(i) + "].shape", budget);
 }
 
 v1::Case load_case_file(const std::string& path) {

@@ -4,6 +4,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "case/case_limits.h"
+#include "case/data_lines.h"
+
 namespace sph {
 
 std::vector<double> ReferenceTable::column(std::size_t k) const {
@@ -19,10 +22,9 @@ ReferenceTable read_reference_table(const std::string& path) {
   ReferenceTable t;
   std::string line;
   bool header = true;
-  int lineno = 0;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  DataLines lines(in, path);
+  while (lines.next(line)) {
+    const int lineno = lines.line_number();
     if (line.empty() || line[0] == '#') continue;
     std::stringstream ss(line);
     std::string cell;
@@ -31,6 +33,9 @@ ReferenceTable read_reference_table(const std::string& path) {
       header = false;
       continue;
     }
+    if (t.rows.size() >= static_cast<std::size_t>(kMaxReferenceRows))
+      throw std::runtime_error(path + ": more than " + std::to_string(kMaxReferenceRows) +
+                               " data rows; the limit is " + std::to_string(kMaxReferenceRows));
     std::vector<double> row;
     while (std::getline(ss, cell, ',')) {
       try {

@@ -14,7 +14,8 @@ struct ReferenceTable {
   std::vector<double> column(std::size_t k) const;
 };
 
-// Throws std::runtime_error naming the file (and line) when it cannot be read or parsed.
+// Throws std::runtime_error naming the file (and line) when it cannot be read or parsed, or
+// breaks kMaxReferenceRows or kMaxDataLineBytes (case/case_limits.h).
 ReferenceTable read_reference_table(const std::string& path);
 
 // Linear interpolation of samples (x ascending) at xq, clamped to the end values outside.

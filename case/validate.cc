@@ -6,7 +6,11 @@
 #include <map>
 #include <set>
 
+#include "case/case_bounds.h"
+#include "case/case_limits.h"
 #include "case/estimate.h"
+#include "case/geometry.h"
+#include "case/lattice.h"
 #include "case/validate_reference.h"
 #include "case/wall_thickness.h"
 
@@ -28,6 +32,8 @@ class Validator {
   Validator(const v1::Case& c, const ValidationLimits& limits) : c_(c), limits_(limits) {}
 
   std::vector<FieldError> run() {
+    // The checks below recurse over shapes and do lattice arithmetic: only within the bounds.
+    if (auto bounds = check_case_bounds(c_); !bounds.empty()) return bounds;
     top_level();
     if (dim_ok_) {
       materials();
@@ -57,6 +63,20 @@ class Validator {
     if (!finite(v.x()) || !finite(v.y()) || !finite(v.z())) error(field, "must be finite");
     if (c_.dimension() == 2 && v.z() != 0.0)
       error(cat(field, "z"), "must be 0 in a 2D case (got " + num(v.z()) + ")");
+  }
+
+  // A position or length of a shape: finite (vec() and positive() name that) and within
+  // kMaxCoordinate, so that its squares and the lattice walk over its bounds stay finite.
+  void extent(double v, const std::string& field) {
+    if (finite(v) && std::abs(v) > kMaxCoordinate)
+      error(field, "is " + count_text(v) + " m; coordinates and lengths must lie within +-" +
+                       count_text(kMaxCoordinate) + " m");
+  }
+  void point(const v1::Vec3& v, const std::string& field) {
+    vec(v, field);
+    extent(v.x(), cat(field, "x"));
+    extent(v.y(), cat(field, "y"));
+    if (c_.dimension() == 3) extent(v.z(), cat(field, "z"));
   }
 
   void top_level() {
@@ -180,8 +200,8 @@ class Validator {
               "intersection, difference or shell)");
         break;
       case v1::Shape::kBox: {
-        vec(s.box().lo(), cat(f, "box.lo"));
-        vec(s.box().hi(), cat(f, "box.hi"));
+        point(s.box().lo(), cat(f, "box.lo"));
+        point(s.box().hi(), cat(f, "box.hi"));
         const double lo[3] = {s.box().lo().x(), s.box().lo().y(), s.box().lo().z()};
         const double hi[3] = {s.box().hi().x(), s.box().hi().y(), s.box().hi().z()};
         for (int a = 0; a < d; ++a)
@@ -190,15 +210,18 @@ class Validator {
         break;
       }
       case v1::Shape::kBall:
-        vec(s.ball().center(), cat(f, "ball.center"));
+        point(s.ball().center(), cat(f, "ball.center"));
         positive(s.ball().radius(), cat(f, "ball.radius"));
+        extent(s.ball().radius(), cat(f, "ball.radius"));
         break;
       case v1::Shape::kCylinder:
         if (d != 3) error(cat(f, "cylinder"), "only in 3D cases (use ball or box in 2D)");
-        vec(s.cylinder().base(), cat(f, "cylinder.base"));
-        vec(s.cylinder().axis(), cat(f, "cylinder.axis"));
+        point(s.cylinder().base(), cat(f, "cylinder.base"));
+        point(s.cylinder().axis(), cat(f, "cylinder.axis"));
         positive(s.cylinder().radius(), cat(f, "cylinder.radius"));
         positive(s.cylinder().length(), cat(f, "cylinder.length"));
+        extent(s.cylinder().radius(), cat(f, "cylinder.radius"));
+        extent(s.cylinder().length(), cat(f, "cylinder.length"));
         if (s.cylinder().axis().x() == 0 && s.cylinder().axis().y() == 0 &&
             s.cylinder().axis().z() == 0)
           error(cat(f, "cylinder.axis"), "must not be zero");
@@ -208,13 +231,14 @@ class Validator {
         if (s.polygon().vertices_size() < 3)
           error(cat(f, "polygon.vertices"), "needs at least 3 vertices");
         for (int i = 0; i < s.polygon().vertices_size(); ++i)
-          vec(s.polygon().vertices(i), idx(cat(f, "polygon.vertices"), i));
+          point(s.polygon().vertices(i), idx(cat(f, "polygon.vertices"), i));
         break;
       case v1::Shape::kPolarCurve: {
         const auto& p = s.polar_curve();
         if (d != 2) error(cat(f, "polar_curve"), "only in 2D cases");
-        vec(p.center(), cat(f, "polar_curve.center"));
+        point(p.center(), cat(f, "polar_curve.center"));
         positive(p.radius(), cat(f, "polar_curve.radius"));
+        extent(p.radius(), cat(f, "polar_curve.radius"));
         if (!(std::abs(p.amplitude()) < p.radius()))
           error(cat(f, "polar_curve.amplitude"), "|amplitude| must be less than radius");
         if (p.periods() < 0) error(cat(f, "polar_curve.periods"), "must be >= 0");
@@ -228,7 +252,7 @@ class Validator {
         else if (s.points().points_size() == 0)
           error(cat(f, "points.points"), "is empty");
         for (int i = 0; i < s.points().points_size(); ++i)
-          vec(s.points().points(i), idx(cat(f, "points.points"), i));
+          point(s.points().points(i), idx(cat(f, "points.points"), i));
         break;
       case v1::Shape::kUnion:
       case v1::Shape::kIntersection: {
@@ -252,7 +276,10 @@ class Validator {
           error(cat(f, "shell.inner"), "is required");
         else
           shape(s.shell().inner(), cat(f, "shell.inner"), false);
-        if (s.shell().has_thickness()) positive(s.shell().thickness(), cat(f, "shell.thickness"));
+        if (s.shell().has_thickness()) {
+          positive(s.shell().thickness(), cat(f, "shell.thickness"));
+          extent(s.shell().thickness(), cat(f, "shell.thickness"));
+        }
         break;
     }
   }
@@ -519,9 +546,6 @@ class Validator {
   void open_boundaries() {
     const int d = c_.dimension();
     const char* axes = "xyz";
-    if (c_.open_boundaries_size() > 254)
-      error("open_boundaries",
-            "at most 254 open boundaries (got " + std::to_string(c_.open_boundaries_size()) + ")");
     std::set<std::string> seen;
     auto comp = [](const v1::Vec3& v, int a) { return a == 0 ? v.x() : a == 1 ? v.y() : v.z(); };
     const double rc = kernel_support_radius(c_);
@@ -732,17 +756,85 @@ class Validator {
     }
   }
 
+  // Each region must place particles, and a fluid or a body most of them inside the domain
+  // (kMinRegionFractionInDomain): the scene builder drops whatever lies outside without a word.
+  void regions_in_domain() {
+    const int d = c_.dimension();
+    const LatticeSpec spec{d, c_.dx(), to_point(c_.lattice_origin())};
+    Aabb domain{to_point(c_.domain().lo()), to_point(c_.domain().hi())};
+    if (d == 2) domain.lo.z() = domain.hi.z() = 0.0;
+    // Lattice points around the domain, as far again as the domain is wide on each side of a
+    // non-periodic axis: a finite box (the lattice range check covers it) that holds any region
+    // "mostly" inside. Along a periodic axis the domain clips every region on purpose.
+    Aabb around = domain;
+    const bool periodic[3] = {c_.periodic_x(), c_.periodic_y(), c_.periodic_z()};
+    for (int a = 0; a < d; ++a) {
+      if (periodic[a]) continue;
+      const double w = domain.hi[a] - domain.lo[a];
+      around.lo[a] -= w;
+      around.hi[a] += w;
+    }
+    const double shell = default_shell_thickness(c_);
+    auto region = [&](const v1::Shape& s, const std::string& kind, const std::string& name,
+                      const std::string& f) {
+      const auto shape = compile_shape(s, d, shell);
+      const double inside = count_lattice_points(*shape, spec, domain);
+      const double near = std::max(inside, count_lattice_points(*shape, spec, around));
+      const std::string what = kind + (name.empty() ? "" : " '" + name + "'");
+      const std::string points = shape->explicit_points() ? "points" : "lattice points";
+      if (inside < 1) {
+        error(f, what + " places no particles: " +
+                     (near >= 1
+                          ? "none of its " + count_text(near) + " " + points + " lies"
+                          : std::string("it has no ") + points + " (dx = " + num(c_.dx()) + ")") +
+                     " inside the domain" + domain_text() + "; the shape spans " +
+                     box_text(shape->bounds()));
+      } else if (kind != "wall" && inside < kMinRegionFractionInDomain * near) {
+        error(f, what + " lies mostly outside the domain" + domain_text() + ": " +
+                     count_text(inside) + " of its " + count_text(near) + " " + points +
+                     " are inside; at least " + count_text(100 * kMinRegionFractionInDomain) +
+                     "% must be");
+      }
+    };
+    for (int i = 0; i < c_.fluids_size(); ++i)
+      region(c_.fluids(i).shape(), "fluid", c_.fluids(i).name(), cat(idx("fluids", i), "shape"));
+    for (int i = 0; i < c_.walls_size(); ++i)
+      region(c_.walls(i).shape(), "wall", c_.walls(i).name(), cat(idx("walls", i), "shape"));
+    for (int i = 0; i < c_.bodies_size(); ++i)
+      region(c_.bodies(i).shape(), "body", c_.bodies(i).name(), cat(idx("bodies", i), "shape"));
+  }
+  std::string domain_text() const {
+    return " (" + box_text({to_point(c_.domain().lo()), to_point(c_.domain().hi())}) + ")";
+  }
+  // "x in [0, 2], y in [0, 2]"
+  std::string box_text(const Aabb& b) const {
+    std::string s;
+    for (int a = 0; a < c_.dimension(); ++a)
+      s += std::string(a ? ", " : "") + "xyz"[a] + " in [" + num(b.lo[a]) + ", " + num(b.hi[a]) +
+           "]";
+    return s;
+  }
+
   void size_limit() {
     if (!errors_.empty()) return;  // shapes must be valid to estimate
+    regions_in_domain();
+    if (!errors_.empty()) return;
     const CaseEstimate e = estimate_case(c_);
     if (e.total() < 1)
       error("fluids", "the case places no particles (check shapes against domain and dx)");
     if (limits_.max_particles > 0 && e.total() > limits_.max_particles)
-      error("dx", "case too large: about " + num(e.total()) + " particles, the limit is " +
-                      num(limits_.max_particles) + " (increase dx or shrink the domain)");
+      error("dx", "case too large: estimated " + count_text(e.total()) + " particles; " +
+                      limits_.source + " limit is " + count_text(limits_.max_particles) +
+                      " (--max-particles): increase dx or shrink the domain");
+    if (limits_.max_memory_bytes > 0 && e.bytes > limits_.max_memory_bytes)
+      error("dx", "case too large: estimated " + gib_text(e.bytes) + " GiB of memory for " +
+                      count_text(e.total()) + " particles; " + limits_.source + " limit is " +
+                      gib_text(limits_.max_memory_bytes) +
+                      " GiB (--max-memory-gib): increase dx or shrink the domain");
     if (!errors_.empty()) return;
     for (auto& w : check_wall_thickness(c_)) errors_.push_back(std::move(w));
   }
+  static std::string gib_text(double bytes) { return number_text(bytes / 1073741824.0, 3); }
 
   const v1::Case& c_;
   ValidationLimits limits_;

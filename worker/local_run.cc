@@ -3,13 +3,16 @@
 #include <mpi.h>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <string>
 
 #include "case/load.h"
+#include "case/study_ladder.h"
 #include "case/study_spec_text.h"
 #include "case/validate.h"
 #include "solver/run/run_case.h"
@@ -23,12 +26,26 @@ extern "C" void on_signal(int) {
   g_interrupt.store(true);
 }
 
-void usage() {
-  std::fprintf(stderr,
-               "usage: sph-worker --case FILE --out DIR [--resume CHECKPOINT] [--quiet]\n"
-               "       sph-worker --case FILE --out DIR (--study-refine N [--study-ratio R] |\n"
-               "                  --study-dx A,B,C) [--quiet]   (a convergence study)\n"
-               "       sph-worker --server ADDR [pool options]   (see --help)\n");
+constexpr const char* kUsage =
+    "usage: sph-worker --case FILE --out DIR [--resume CHECKPOINT] [--quiet] [limits]\n"
+    "       sph-worker --case FILE --out DIR (--study-refine N [--study-ratio R] |\n"
+    "                  --study-dx A,B,C) [--quiet] [limits]   (a convergence study)\n"
+    "       sph-worker --server ADDR [pool options]   (see --server ADDR --help)\n"
+    "limits (as sph-server applies them at submit; 0 = no limit):\n"
+    "  --max-particles N    refuse cases estimated above N particles (default 2e7)\n"
+    "  --max-memory-gib G   refuse cases estimated to need more than G GiB (default 64)\n";
+
+void usage(FILE* to) {
+  std::fputs(kUsage, to);
+}
+
+// A limit from the command line: a finite number >= 0.
+bool parse_limit(const std::string& text, double& value) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v) || v < 0) return false;
+  value = v;
+  return true;
 }
 
 // Rank 0 reads the case (point files relative to it are inlined) and broadcasts the text, so
@@ -56,6 +73,9 @@ bool load_on_root(const std::string& path, int rank, std::string& text, std::str
 int run_local(int argc, char** argv) {
   std::string case_path, out_dir, resume;
   bool quiet = false;
+  // The defaults of sph-server (server/config.h), so a case that runs here is accepted there.
+  double max_particles = 2e7, max_memory_gib = 64;
+  std::string bad_limit;
   bool study = false;
   v1::StudySpec spec;
   std::string study_error;
@@ -75,7 +95,17 @@ int run_local(int argc, char** argv) {
       ok = next(resume);
     else if (a == "--quiet")
       quiet = true;
-    else if (a == "--study-refine" || a == "--study-ratio" || a == "--study-dx") {
+    else if (a == "--help" || a == "-h") {
+      int rank = 0;
+      MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+      if (rank == 0) usage(stdout);
+      return kExitOk;
+    } else if (a == "--max-particles" || a == "--max-memory-gib") {
+      std::string value;
+      ok = next(value);
+      if (ok && !parse_limit(value, a == "--max-particles" ? max_particles : max_memory_gib))
+        bad_limit = a + " needs a number >= 0 (0 = no limit), got '" + value + "'";
+    } else if (a == "--study-refine" || a == "--study-ratio" || a == "--study-dx") {
       std::string value;
       ok = next(value);
       study = true;
@@ -83,20 +113,22 @@ int run_local(int argc, char** argv) {
     } else
       ok = false;
     if (!ok) {
-      usage();
+      usage(stderr);
       return kExitError;
     }
   }
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  if (case_path.empty() || out_dir.empty() || !study_error.empty() || (study && !resume.empty())) {
+  if (case_path.empty() || out_dir.empty() || !study_error.empty() || !bad_limit.empty() ||
+      (study && !resume.empty())) {
     if (rank == 0) {
       if (!study_error.empty()) std::fprintf(stderr, "sph-worker: %s\n", study_error.c_str());
+      if (!bad_limit.empty()) std::fprintf(stderr, "sph-worker: %s\n", bad_limit.c_str());
       if (study && !resume.empty())
         std::fprintf(stderr,
                      "sph-worker: a study resumes by itself when run again into the same --out "
                      "directory; --resume is for single runs\n");
-      usage();
+      usage(stderr);
     }
     return kExitError;
   }
@@ -106,7 +138,13 @@ int run_local(int argc, char** argv) {
     return kExitInvalidCase;
   }
   const v1::Case c = parse_case_text(text);
-  const auto errors = validate_case(c);
+  ValidationLimits limits;
+  limits.max_particles = max_particles;
+  limits.max_memory_bytes = max_memory_gib * 1073741824.0;
+  limits.source = "sph-worker's";
+  auto errors = validate_case(c, limits);
+  // A study is as large as its finest level.
+  if (errors.empty() && study) errors = validate_study(c, spec, limits);
   if (!errors.empty()) {
     if (rank == 0) {
       std::fprintf(stderr, "sph-worker: invalid case %s:\n", case_path.c_str());

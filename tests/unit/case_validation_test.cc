@@ -340,7 +340,10 @@ TEST(CaseValidation, SizeLimitNamesDx) {
   EXPECT_NEAR(e.fluid_particles, 100, 0.5);  // 10 x 10 lattice points in the 1 x 1 box
   c.set_dx(0.001);                           // 1e6 particles
   const auto errs = validate_case(c, ValidationLimits{1e4});
-  EXPECT_TRUE(has_error(errs, "dx", "case too large")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "dx",
+                        "case too large: estimated 1e6 particles; this server's limit is 10000 "
+                        "(--max-particles)"))
+      << dump(errs);
 }
 
 // The Verlet skin is given in units of dx, refused outside [0, 2] by name; it is 0.3 dx by
@@ -434,7 +437,11 @@ TEST(CaseValidation, EmptyPlacementIsAnError) {
   c.mutable_fluids(0)->mutable_shape()->mutable_box()->mutable_lo()->set_x(5);
   c.mutable_fluids(0)->mutable_shape()->mutable_box()->mutable_hi()->set_x(6);
   const auto errs = validate_case(c);
-  EXPECT_TRUE(has_error(errs, "fluids", "places no particles")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "fluids[0].shape",
+                        "fluid 'f' places no particles: it has no lattice points (dx = 0.1) "
+                        "inside the domain (x in [0, 2], y in [0, 2]); the shape spans x in [5, "
+                        "6], y in [0.5, 1.5]"))
+      << dump(errs);
 }
 
 TEST(CaseValidation, TimeFunctionTables) {
@@ -448,12 +455,16 @@ TEST(CaseValidation, TimeFunctionTables) {
       << dump(errs);
 }
 
-// Every case file under cases/ and cases/studies/ (the seed scenes, the stability suite's and
-// the convergence studies' cases): a shipped case that no longer validates fails here, not in
-// a user's hands.
+// Every case file under cases/, cases/studies/ and tests/*/cases/ (the seed scenes, the
+// stability suite's, the convergence studies' and the service tests' cases): a shipped case
+// that no longer validates fails here, not in a user's hands.
 TEST(CaseValidation, EveryShippedCaseIsValid) {
   int checked = 0;
-  for (const char* dir : {"/cases", "/cases/studies"}) {
+  std::vector<std::string> dirs = {"/cases", "/cases/studies"};
+  for (const auto& e : std::filesystem::directory_iterator(std::string(SPHD_SOURCE_DIR) + "/tests"))
+    if (std::filesystem::is_directory(e.path() / "cases"))
+      dirs.push_back("/tests/" + e.path().filename().string() + "/cases");
+  for (const auto& dir : dirs) {
     std::vector<std::filesystem::path> files;
     for (const auto& e : std::filesystem::directory_iterator(std::string(SPHD_SOURCE_DIR) + dir))
       if (e.path().extension() == ".textproto") files.push_back(e.path());
@@ -464,7 +475,7 @@ TEST(CaseValidation, EveryShippedCaseIsValid) {
       ++checked;
     }
   }
-  EXPECT_GE(checked, 35);
+  EXPECT_GE(checked, 42);
 }
 
 }  // namespace
