@@ -89,6 +89,13 @@ std::string finished_only_message(std::int64_t id, v1::JobState state) {
          ")";
 }
 
+// A count of jobs or particles in a message: every digit, no exponent.
+std::string count_text(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.0f", v);
+  return buf;
+}
+
 std::string resume_phrase(const v1::Job& j) {
   if (!j.has_checkpoint()) return "starts over (no checkpoint yet)";
   return "resumes from the checkpoint at step " + std::to_string(j.checkpoint().step()) +
@@ -106,7 +113,11 @@ struct JobStore::Row {
 
 JobStore::JobStore(const std::string& db_path, ResultLayout layout, StoreOptions options,
                    EventFeed& feed)
-    : db_(db_path), layout_(std::move(layout)), options_(options), feed_(feed) {
+    : db_(db_path),
+      layout_(std::move(layout)),
+      options_(options),
+      feed_(feed),
+      submits_([this](std::span<SubmitGroup::Entry* const> batch) { commit_submits(batch); }) {
   migrate(db_);
 }
 
@@ -170,6 +181,7 @@ void JobStore::set_state(std::int64_t id, v1::JobState state, const std::string&
       .bind(4, terminal ? 1 : 0)
       .bind(5, now_ms);
   st.run();
+  queue_totals_.reset();
   v1::JobEvent e;
   auto* sc = e.mutable_state_change();
   sc->set_state(state);
@@ -265,10 +277,54 @@ v1::Job JobStore::read_job(std::int64_t id, bool include_case, bool include_atte
   return j;
 }
 
-SubmitResult JobStore::submit(const NewJob& job, std::int64_t now_ms) {
+SubmitResult JobStore::submit(const NewJob& job, std::int64_t now_ms, const QueueLimits& limits) {
+  return submits_.submit(PendingSubmit{&job, now_ms, limits});
+}
+
+void JobStore::commit_submits(std::span<SubmitGroup::Entry* const> batch) {
   std::lock_guard lock(mu_);
   pending_events_.clear();
-  WriteTransaction tx(db_);
+  pending_queue_wakeup_ = false;
+  std::optional<QueueTotals> totals = queue_totals_;
+  try {
+    WriteTransaction tx(db_);
+    for (SubmitGroup::Entry* e : batch) {
+      // A refusal of one submit leaves the others (and the transaction) alone; any other error
+      // fails the whole batch below.
+      try {
+        e->result = insert_job(*e->request, totals);
+      } catch (const JobError&) {
+        e->error = std::current_exception();
+      } catch (const QueueFull&) {
+        e->error = std::current_exception();
+      }
+    }
+    tx.commit();
+  } catch (...) {
+    // Rolled back: nothing of the batch was stored, and every submit in it fails alike.
+    queue_totals_.reset();
+    pending_events_.clear();
+    pending_queue_wakeup_ = false;
+    for (SubmitGroup::Entry* e : batch) {
+      e->result.reset();
+      e->error = std::current_exception();
+    }
+    return;
+  }
+  queue_totals_ = totals;
+  publish();
+}
+
+JobStore::QueueTotals JobStore::count_unfinished() {
+  auto st = db_.prepare(
+      "SELECT COUNT(*), TOTAL(estimated_particles) FROM jobs WHERE state IN ('QUEUED', "
+      "'RUNNING')");
+  st.step();
+  return {st.int64(0), st.real(1)};
+}
+
+SubmitResult JobStore::insert_job(const PendingSubmit& s, std::optional<QueueTotals>& totals) {
+  const NewJob& job = *s.job;
   {
     auto st = db_.prepare("SELECT id, case_sha256 FROM jobs WHERE request_id = ?1");
     st.bind(1, job.request_id);
@@ -281,30 +337,72 @@ SubmitResult JobStore::submit(const NewJob& job, std::int64_t now_ms) {
       return {read_job(id, false, false), false};
     }
   }
+  if (s.limits.max_jobs > 0 || s.limits.max_particles > 0) {
+    if (!totals) totals = count_unfinished();
+    if (s.limits.max_jobs > 0 && static_cast<double>(totals->jobs) + 1 > s.limits.max_jobs)
+      throw QueueFull("queue full: " + count_text(static_cast<double>(totals->jobs)) +
+                      (totals->jobs == 1 ? " job is" : " jobs are") +
+                      " queued or running; the limit is " + count_text(s.limits.max_jobs) +
+                      " (--max-queued-jobs)");
+    if (s.limits.max_particles > 0 &&
+        totals->particles + job.estimated_particles > s.limits.max_particles)
+      throw QueueFull("queue full: queued and running jobs are estimated at " +
+                      count_text(totals->particles) + " particles and this case at " +
+                      count_text(job.estimated_particles) + "; the limit is " +
+                      count_text(s.limits.max_particles) + " (--max-queued-particles)");
+  }
+  // The job starts with its first event (QUEUED), so last_event is 1 from the insert on.
   auto insert = db_.prepare(
       "INSERT INTO jobs (request_id, case_sha256, name, case_text, estimated_particles, "
-      "state, reason, created_ms, study) VALUES (?1, ?2, ?3, ?4, ?5, 'QUEUED', 'submitted', "
-      "?6, ?7)");
+      "state, reason, created_ms, study, last_event) VALUES (?1, ?2, ?3, ?4, ?5, 'QUEUED', "
+      "'submitted', ?6, ?7, 1)");
   insert.bind(1, job.request_id)
       .bind(2, job.case_sha256)
       .bind(3, job.name)
       .bind(4, job.case_text)
       .bind(5, job.estimated_particles)
-      .bind(6, now_ms);
+      .bind(6, s.now_ms);
   if (job.study.empty())
     insert.bind_null(7);
   else
     insert.bind_blob(7, job.study);
   insert.run();
   const std::int64_t id = sqlite3_last_insert_rowid(db_.handle());
+
+  // The row as job_from_row would read it back (StoreTest.SubmitReturnsTheStoredJob).
+  SubmitResult result;
+  result.created = true;
+  v1::Job& j = result.job;
+  j.set_id(format_job_id(id));
+  j.set_request_id(job.request_id);
+  j.set_name(job.name);
+  j.set_state(v1::JOB_STATE_QUEUED);
+  j.set_reason("submitted");
+  j.set_created_unix_ms(s.now_ms);
+  j.set_estimated_particles(job.estimated_particles);
+  j.set_last_event_sequence(1);
+  if (!job.study.empty()) j.mutable_study()->ParseFromString(job.study);
+
   v1::JobEvent e;
+  e.set_job_id(j.id());
+  e.set_sequence(1);
+  e.set_time_unix_ms(s.now_ms);
   e.mutable_state_change()->set_state(v1::JOB_STATE_QUEUED);
   e.mutable_state_change()->set_reason("submitted");
-  append_event(id, e, now_ms);
+  db_.prepare(
+         "INSERT INTO events (job_id, sequence, time_ms, kind, payload) VALUES (?1, 1, ?2, ?3, "
+         "?4)")
+      .bind(1, id)
+      .bind(2, s.now_ms)
+      .bind(3, event_kind(e))
+      .bind_blob(4, e.SerializeAsString())
+      .run();
+  pending_events_.emplace_back(id, 1);
   pending_queue_wakeup_ = true;
-  SubmitResult result{read_job(id, false, false), true};
-  tx.commit();
-  publish();
+  if (totals) {
+    ++totals->jobs;
+    totals->particles += job.estimated_particles;
+  }
   return result;
 }
 

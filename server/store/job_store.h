@@ -2,16 +2,20 @@
 // The job queue and its history in SQLite: submission (exactly once per request id), claims
 // with leases, fenced worker reports, terminal states with reasons, and the append-only event
 // log that WatchJob replays. Every method is one transaction and thread-safe; times are
-// passed in (unix milliseconds) so that lease expiry is testable without sleeping.
+// passed in (unix milliseconds) so that lease expiry is testable without sleeping. Concurrent
+// submits share transactions (group commit); each returns once its own row is durable.
 #include <cstdint>
 #include <mutex>
 #include <optional>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "server/events/event_feed.h"
 #include "server/results/result_layout.h"
+#include "server/store/group_commit.h"
 #include "server/store/job_error.h"
 #include "server/store/sqlite.h"
 #include "sph/v1/service.pb.h"
@@ -39,6 +43,18 @@ struct SubmitResult {
   bool created = false;
 };
 
+// What all unfinished (queued or running) jobs together may hold; 0 = no limit.
+struct QueueLimits {
+  double max_jobs = 0;
+  double max_particles = 0;  // the sum of their estimated particles
+};
+
+// A new job refused because the queue is at a QueueLimits limit; the message has the numbers.
+class QueueFull : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 struct ClaimInfo {
   std::string pool;
   std::string hostname;
@@ -54,7 +70,14 @@ class JobStore {
  public:
   JobStore(const std::string& db_path, ResultLayout layout, StoreOptions options, EventFeed& feed);
 
-  SubmitResult submit(const NewJob& job, std::int64_t now_ms);
+  // Stores the job, or returns the job stored before under the same request id (created =
+  // false, whether or not the queue is full). Throws JobError kRequestConflict for a request id
+  // used with another case, QueueFull when a new job would exceed `limits` (counting the jobs
+  // committed before it in the same transaction), and SqliteError when the transaction fails,
+  // in which case nothing of it was stored.
+  SubmitResult submit(const NewJob& job, std::int64_t now_ms, const QueueLimits& limits = {});
+  // Transactions and submits so far (group commit at work: fewer batches than submits).
+  GroupCommitStats submit_stats() const { return submits_.stats(); }
   v1::Job get(std::int64_t id, bool include_case);
   // Newest first, ids below `before` (0: from the newest).
   JobPage list(const std::vector<v1::JobState>& states, int page_size, std::int64_t before);
@@ -94,6 +117,20 @@ class JobStore {
   const StoreOptions& options() const { return options_; }
 
  private:
+  struct PendingSubmit {
+    const NewJob* job = nullptr;
+    std::int64_t now_ms = 0;
+    QueueLimits limits;
+  };
+  using SubmitGroup = GroupCommit<PendingSubmit, SubmitResult>;
+  struct QueueTotals {
+    std::int64_t jobs = 0;
+    double particles = 0;
+  };
+  void commit_submits(std::span<SubmitGroup::Entry* const> batch);
+  SubmitResult insert_job(const PendingSubmit& s, std::optional<QueueTotals>& totals);
+  QueueTotals count_unfinished();
+
   struct Row;  // a job row as read for state transitions
   Row load_row(std::int64_t id);
   std::int64_t append_event(std::int64_t id, v1::JobEvent& event, std::int64_t now_ms);
@@ -115,6 +152,11 @@ class JobStore {
   // Events appended by the current transaction, published to the feed after it commits.
   std::vector<std::pair<std::int64_t, std::int64_t>> pending_events_;
   bool pending_queue_wakeup_ = false;
+  // The unfinished jobs as last counted, kept up to date by submits; every state change
+  // forgets it (set_state), so the next submit that needs it counts again in its transaction.
+  std::optional<QueueTotals> queue_totals_;
+  // Last: its batches call into the members above.
+  SubmitGroup submits_;
 };
 
 }  // namespace sph::server::store

@@ -7,12 +7,25 @@ Statement::Statement(sqlite3* db, std::string_view sql) : db_(db) {
         "prepare");
 }
 
-Statement::~Statement() {
-  sqlite3_finalize(stmt_);
+Statement::Statement(sqlite3* db, sqlite3_stmt* cached, bool* lent)
+    : db_(db), stmt_(cached), lent_(lent) {
+  *lent_ = true;
 }
 
-Statement::Statement(Statement&& other) noexcept : db_(other.db_), stmt_(other.stmt_) {
+Statement::~Statement() {
+  if (lent_ != nullptr) {
+    sqlite3_reset(stmt_);
+    sqlite3_clear_bindings(stmt_);
+    *lent_ = false;
+  } else {
+    sqlite3_finalize(stmt_);
+  }
+}
+
+Statement::Statement(Statement&& other) noexcept
+    : db_(other.db_), stmt_(other.stmt_), lent_(other.lent_) {
   other.stmt_ = nullptr;
+  other.lent_ = nullptr;
 }
 
 void Statement::check(int rc, const char* what) const {
@@ -103,7 +116,27 @@ Database::Database(const std::string& path) {
 }
 
 Database::~Database() {
+  for (auto& [sql, cached] : cache_) sqlite3_finalize(cached.stmt);
   sqlite3_close(db_);
+}
+
+Statement Database::prepare(std::string_view sql) {
+  const auto it = cache_.find(sql);
+  if (it != cache_.end()) {
+    if (it->second.lent) return Statement(db_, sql);
+    return Statement(db_, it->second.stmt, &it->second.lent);
+  }
+  if (cache_.size() >= kMaxCachedStatements) return Statement(db_, sql);
+  sqlite3_stmt* stmt = nullptr;
+  const int rc = sqlite3_prepare_v3(db_, sql.data(), static_cast<int>(sql.size()),
+                                    SQLITE_PREPARE_PERSISTENT, &stmt, nullptr);
+  if (rc != SQLITE_OK) {
+    sqlite3_finalize(stmt);
+    throw SqliteError(
+        rc, std::string("sqlite prepare: ") + sqlite3_errmsg(db_) + " [" + std::string(sql) + "]");
+  }
+  auto& cached = cache_.emplace(std::string(sql), Cached{stmt, false}).first->second;
+  return Statement(db_, cached.stmt, &cached.lent);
 }
 
 void Database::exec(std::string_view sql) {
@@ -119,7 +152,7 @@ void Database::exec(std::string_view sql) {
 }
 
 WriteTransaction::WriteTransaction(Database& db) : db_(db) {
-  db_.exec("BEGIN IMMEDIATE");
+  db_.prepare("BEGIN IMMEDIATE").run();
 }
 
 WriteTransaction::~WriteTransaction() {
@@ -133,7 +166,7 @@ WriteTransaction::~WriteTransaction() {
 }
 
 void WriteTransaction::commit() {
-  db_.exec("COMMIT");
+  db_.prepare("COMMIT").run();
   done_ = true;
 }
 

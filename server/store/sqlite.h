@@ -4,6 +4,7 @@
 #include <sqlite3.h>
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -22,7 +23,10 @@ class SqliteError : public std::runtime_error {
 
 class Statement {
  public:
+  // Prepares `sql`; finalized when destroyed.
   Statement(sqlite3* db, std::string_view sql);
+  // Finalizes, or for a statement lent by Database::prepare's cache, resets it and clears its
+  // bindings, so that it holds no read snapshot and can be lent again.
   ~Statement();
   Statement(const Statement&) = delete;
   Statement& operator=(const Statement&) = delete;
@@ -54,9 +58,12 @@ class Statement {
   std::string blob(int column) const;
 
  private:
+  friend class Database;
+  Statement(sqlite3* db, sqlite3_stmt* cached, bool* lent);
   void check(int rc, const char* what) const;
   sqlite3* db_;
   sqlite3_stmt* stmt_ = nullptr;
+  bool* lent_ = nullptr;  // the cache's flag, for a statement the cache owns
 };
 
 class Database {
@@ -68,12 +75,25 @@ class Database {
   Database& operator=(const Database&) = delete;
 
   void exec(std::string_view sql);
-  Statement prepare(std::string_view sql) { return Statement(db_, sql); }
+  // A statement for `sql`, prepared once per connection and lent out again on later calls
+  // (preparing costs more than running most of the store's statements). A statement still
+  // lent out when the same text is asked for again is prepared afresh for that caller.
+  Statement prepare(std::string_view sql);
   std::int64_t changes() const { return sqlite3_changes64(db_); }
   sqlite3* handle() { return db_; }
+  // How many statements the connection keeps prepared.
+  std::size_t cached_statements() const { return cache_.size(); }
 
  private:
+  struct Cached {
+    sqlite3_stmt* stmt = nullptr;
+    bool lent = false;
+  };
+  // Statements built from request contents (a list of states) vary; past this many distinct
+  // texts the rest are prepared per call.
+  static constexpr std::size_t kMaxCachedStatements = 64;
   sqlite3* db_ = nullptr;
+  std::map<std::string, Cached, std::less<>> cache_;
 };
 
 // BEGIN IMMEDIATE ... COMMIT. Every transaction that writes takes the write lock up front: a

@@ -1,10 +1,18 @@
-// The job store on a real SQLite file: exactly-once submission, leases and fencing, terminal
-// states with reasons, the append-only event log and schema versioning. Times are passed in,
-// so lease expiry needs no sleeping.
+// The job store on a real SQLite file: exactly-once submission, group commit of concurrent
+// submits, queue limits, leases and fencing, terminal states with reasons, the append-only
+// event log and schema versioning. Times are passed in, so lease expiry needs no sleeping.
+#include <google/protobuf/util/message_differencer.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
+#include <future>
+#include <latch>
+#include <map>
+#include <set>
+#include <thread>
+#include <variant>
 
 #include "server/common/job_state.h"
 #include "server/events/event_feed.h"
@@ -20,6 +28,39 @@ namespace fs = std::filesystem;
 
 constexpr std::int64_t kLeaseMs = 1000;
 constexpr std::int64_t kT0 = 1'700'000'000'000;
+
+// What one submit came back with: the result, or the error's kind and message.
+struct Outcome {
+  std::optional<SubmitResult> result;
+  std::string error;  // "conflict: ...", "queue full: ..." or "sqlite: ..."
+};
+
+Outcome submit_outcome(JobStore& store, const NewJob& job, const QueueLimits& limits = {}) {
+  Outcome o;
+  try {
+    o.result = store.submit(job, kT0, limits);
+  } catch (const JobError& e) {
+    o.error = (e.kind() == JobError::Kind::kRequestConflict ? "conflict: " : "job error: ") +
+              std::string(e.what());
+  } catch (const QueueFull& e) {
+    o.error = e.what();
+  } catch (const SqliteError& e) {
+    o.error = std::string("sqlite: ") + e.what();
+  }
+  return o;
+}
+
+// Holds the database's write lock from a second connection: the store's next batch waits in
+// BEGIN IMMEDIATE (for up to its busy timeout) while more submits queue up behind it, so a
+// test decides which submits share a transaction.
+class WriteLockHolder {
+ public:
+  explicit WriteLockHolder(const std::string& path) : db_(path) { db_.exec("BEGIN IMMEDIATE"); }
+  void release() { db_.exec("COMMIT"); }
+
+ private:
+  Database db_;
+};
 
 class StoreTest : public ::testing::Test {
  protected:
@@ -39,6 +80,41 @@ class StoreTest : public ::testing::Test {
                                         StoreOptions{kLeaseMs, max_lost}, feed_);
   }
   std::string db() const { return dir_ + "/jobs.db"; }
+
+  // Submits `first` while the write lock is held, then `batch` behind it, releases the lock
+  // once all of `batch` is queued and returns every outcome (first's, then batch's in order):
+  // `batch` is committed as one transaction after first's.
+  std::vector<Outcome> submit_as_one_batch(const NewJob& first, const std::vector<NewJob>& batch,
+                                           const QueueLimits& limits = {}) {
+    WriteLockHolder lock(db());
+    const auto before = store_->submit_stats().batches;
+    std::vector<std::future<Outcome>> pending;
+    pending.push_back(std::async(std::launch::async,
+                                 [&, j = first] { return submit_outcome(*store_, j, limits); }));
+    wait_for([&] { return store_->submit_stats().committing == 1; });
+    for (const NewJob& j : batch) {
+      const std::size_t queued = pending.size();
+      pending.push_back(
+          std::async(std::launch::async, [&, j] { return submit_outcome(*store_, j, limits); }));
+      // One at a time, so that the batch keeps the order given.
+      wait_for([&] { return store_->submit_stats().waiting == queued; });
+    }
+    lock.release();
+    std::vector<Outcome> out;
+    for (auto& f : pending) out.push_back(f.get());
+    const auto stats = store_->submit_stats();
+    EXPECT_EQ(stats.batches - before, 2) << "the batch was not committed as one";
+    return out;
+  }
+
+  template <typename Predicate>
+  static void wait_for(Predicate done) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(4);
+    while (!done()) {
+      ASSERT_LT(std::chrono::steady_clock::now(), until) << "timed out";
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  }
 
   NewJob job(const std::string& request_id, const std::string& text = "name: \"a\"") {
     return NewJob{request_id, "a", text, "sha-of-" + text, 100, ""};
@@ -90,6 +166,202 @@ TEST_F(StoreTest, RequestIdReusedWithAnotherCaseIsAConflict) {
     EXPECT_NE(std::string(e.what()).find("r1"), std::string::npos);
   }
   EXPECT_EQ(store_->list({}, 100, 0).jobs.size(), 1u);
+}
+
+// Many submits at once, with request ids repeated (same case: the same job) and reused with
+// another case (a conflict): every job is stored once, every caller gets its own answer, and
+// the submits share transactions.
+TEST_F(StoreTest, ConcurrentSubmitsAreStoredOnceAndShareTransactions) {
+  constexpr int kUnique = 64, kRepeated = 16, kConflicting = 8;
+  std::vector<NewJob> jobs;
+  for (int i = 0; i < kUnique; ++i) jobs.push_back(job("u" + std::to_string(i)));
+  for (int i = 0; i < kRepeated; ++i)
+    for (int k = 0; k < 2; ++k) jobs.push_back(job("d" + std::to_string(i)));
+  for (int i = 0; i < kConflicting; ++i) {
+    jobs.push_back(job("c" + std::to_string(i), "name: \"a\""));
+    jobs.push_back(job("c" + std::to_string(i), "name: \"b\""));
+  }
+  const int n = static_cast<int>(jobs.size());
+  std::vector<Outcome> outcomes(jobs.size());
+  std::latch start(n);
+  std::vector<std::thread> threads;
+  for (int i = 0; i < n; ++i)
+    threads.emplace_back([&, i] {
+      start.arrive_and_wait();
+      outcomes[static_cast<size_t>(i)] = submit_outcome(*store_, jobs[static_cast<size_t>(i)]);
+    });
+  for (auto& t : threads) t.join();
+
+  std::map<std::string, std::vector<const Outcome*>> by_request;
+  for (int i = 0; i < n; ++i)
+    by_request[jobs[static_cast<size_t>(i)].request_id].push_back(
+        &outcomes[static_cast<size_t>(i)]);
+  std::set<std::string> job_ids;
+  for (const auto& [request_id, answers] : by_request) {
+    int created = 0, conflicts = 0;
+    std::set<std::string> ids;
+    for (const Outcome* o : answers) {
+      if (o->result) {
+        created += o->result->created;
+        ids.insert(o->result->job.id());
+        EXPECT_EQ(o->result->job.request_id(), request_id);
+      } else {
+        EXPECT_EQ(o->error.rfind("conflict: ", 0), 0u) << request_id << ": " << o->error;
+        EXPECT_NE(o->error.find("'" + request_id + "'"), std::string::npos) << o->error;
+        ++conflicts;
+      }
+    }
+    EXPECT_EQ(created, 1) << request_id;
+    EXPECT_EQ(ids.size(), 1u) << request_id << " answered with different jobs";
+    EXPECT_EQ(conflicts, request_id[0] == 'c' ? 1 : 0) << request_id;
+    job_ids.insert(ids.begin(), ids.end());
+  }
+  const auto stored = store_->list({}, 1000, 0).jobs;
+  EXPECT_EQ(stored.size(), by_request.size());
+  EXPECT_EQ(job_ids.size(), by_request.size());
+  std::set<std::string> stored_requests;
+  for (const auto& j : stored) {
+    stored_requests.insert(j.request_id());
+    const auto events = store_->events_after(std::stoll(j.id().substr(4)), 0, 10);
+    ASSERT_EQ(events.size(), 1u) << j.id();
+    EXPECT_EQ(events[0].state_change().state(), v1::JOB_STATE_QUEUED);
+  }
+  EXPECT_EQ(stored_requests.size(), by_request.size());
+
+  const auto stats = store_->submit_stats();
+  std::printf("%d concurrent submits: %lld transactions, the largest of %zu submits\n", n,
+              static_cast<long long>(stats.batches), stats.largest);
+  EXPECT_EQ(stats.requests, n);
+  EXPECT_LT(stats.batches, n);
+  EXPECT_GT(stats.largest, 1u);
+}
+
+// The job a submit returns is built without reading the row back: it must be the stored one.
+TEST_F(StoreTest, SubmitReturnsTheStoredJob) {
+  v1::StudySpec spec;
+  spec.set_refine(3);
+  NewJob study = job("study", "name: \"s\"");
+  study.study = spec.SerializeAsString();
+  for (const NewJob& j : {job("plain"), study}) {
+    const auto submitted = store_->submit(j, kT0 + 7);
+    ASSERT_TRUE(submitted.created);
+    const v1::Job stored = store_->get(std::stoll(submitted.job.id().substr(4)), false);
+    std::string diff;
+    google::protobuf::util::MessageDifferencer d;
+    d.ReportDifferencesToString(&diff);
+    EXPECT_TRUE(d.Compare(submitted.job, stored)) << diff;
+    EXPECT_EQ(stored.last_event_sequence(), 1);
+    const auto again = store_->submit(j, kT0 + 8);
+    EXPECT_FALSE(again.created);
+    EXPECT_TRUE(google::protobuf::util::MessageDifferencer::Equals(again.job, stored));
+  }
+}
+
+// A transaction that fails fails every submit in it, stores nothing of it, and leaves the
+// batches before and after alone.
+TEST_F(StoreTest, AFailedTransactionFailsItsWholeBatchAndNothingElse) {
+  {
+    Database raw(db());
+    raw.exec(
+        "CREATE TRIGGER poison BEFORE INSERT ON jobs WHEN NEW.request_id = 'poison' "
+        "BEGIN SELECT RAISE(ABORT, 'poisoned request'); END");
+  }
+  const auto out = submit_as_one_batch(job("first"), {job("b1"), job("poison"), job("b2")});
+  ASSERT_EQ(out.size(), 4u);
+  ASSERT_TRUE(out[0].result) << out[0].error;
+  EXPECT_TRUE(out[0].result->created);
+  for (size_t i = 1; i < out.size(); ++i) {
+    EXPECT_FALSE(out[i].result) << i;
+    EXPECT_NE(out[i].error.find("poisoned request"), std::string::npos)
+        << i << ": " << out[i].error;
+  }
+  std::set<std::string> stored;
+  for (const auto& j : store_->list({}, 100, 0).jobs) stored.insert(j.request_id());
+  EXPECT_EQ(stored, std::set<std::string>({"first"}));
+  // The next batch is not affected (and b1 can be submitted again).
+  EXPECT_TRUE(store_->submit(job("b1"), kT0).created);
+  EXPECT_EQ(store_->list({}, 100, 0).jobs.size(), 2u);
+  EXPECT_EQ(store_->events_after(2, 0, 10).size(), 1u);
+}
+
+TEST_F(StoreTest, TheQueuedJobsLimitCountsTheJobsOfTheSameBatch) {
+  const QueueLimits limits{3, 0};
+  store_->submit(job("old"), kT0, limits);
+  const auto out =
+      submit_as_one_batch(job("first"), {job("q1"), job("q2"), job("old"), job("q3")}, limits);
+  ASSERT_TRUE(out[0].result && out[0].result->created);
+  ASSERT_TRUE(out[1].result && out[1].result->created);  // the third job
+  const std::string full =
+      "queue full: 3 jobs are queued or running; the limit is 3 (--max-queued-jobs)";
+  EXPECT_EQ(out[2].error, full);
+  // A request id stored before is answered, full or not.
+  ASSERT_TRUE(out[3].result) << out[3].error;
+  EXPECT_FALSE(out[3].result->created);
+  EXPECT_EQ(out[3].result->job.request_id(), "old");
+  EXPECT_EQ(out[4].error, full);
+  EXPECT_EQ(store_->list({}, 100, 0).jobs.size(), 3u);
+  std::printf("%s\n", full.c_str());
+
+  // Running jobs count; a finished one frees its place.
+  const auto c = claim(kT0);
+  EXPECT_EQ(submit_outcome(*store_, job("q4"), limits).error, full);
+  store_->finish(finish_for(c, v1::ATTEMPT_COMPLETED), kT0 + 1);
+  EXPECT_TRUE(store_->submit(job("q4"), kT0, limits).created);
+  EXPECT_EQ(submit_outcome(*store_, job("q5"), limits).error, full);
+  store_->cancel(3, "", kT0 + 2);
+  EXPECT_TRUE(store_->submit(job("q5"), kT0, limits).created);
+  // Without a limit nothing is refused.
+  EXPECT_TRUE(store_->submit(job("q6"), kT0).created);
+}
+
+TEST_F(StoreTest, TheQueuedParticlesLimitCountsTheJobsOfTheSameBatch) {
+  const QueueLimits limits{0, 250};  // each job() is estimated at 100 particles
+  const auto out = submit_as_one_batch(job("first"), {job("p1"), job("p2"), job("p3")}, limits);
+  ASSERT_TRUE(out[0].result && out[0].result->created);
+  ASSERT_TRUE(out[1].result && out[1].result->created);
+  const std::string full =
+      "queue full: queued and running jobs are estimated at 200 particles and this case at "
+      "100; the limit is 250 (--max-queued-particles)";
+  EXPECT_EQ(out[2].error, full);
+  EXPECT_EQ(out[3].error, full);
+  std::printf("%s\n", full.c_str());
+  NewJob small = job("small");
+  small.estimated_particles = 50;
+  EXPECT_TRUE(store_->submit(small, kT0, limits).created);
+  const auto c = claim(kT0);
+  store_->finish(finish_for(c, v1::ATTEMPT_FAILED), kT0 + 1);
+  EXPECT_TRUE(store_->submit(job("p2"), kT0, limits).created);
+  EXPECT_EQ(store_->list({}, 100, 0).jobs.size(), 4u);
+}
+
+TEST_F(StoreTest, PreparedStatementsAreKeptAndLentOneAtATime) {
+  Database raw(db());
+  const auto count = [&](const std::string& sql) {
+    auto st = raw.prepare(sql);
+    st.step();
+    return st.int64(0);
+  };
+  const auto cached = raw.cached_statements();
+  submit("a");
+  submit("b");
+  EXPECT_EQ(count("SELECT COUNT(*) FROM jobs"), 2);
+  EXPECT_EQ(count("SELECT COUNT(*) FROM jobs"), 2);
+  EXPECT_EQ(raw.cached_statements(), cached + 1);
+  // The same text again while the first is still lent (and half stepped): a statement of its
+  // own; the bindings of a returned statement are cleared.
+  auto outer = raw.prepare("SELECT id FROM jobs WHERE id >= ?1 ORDER BY id");
+  outer.bind(1, 1);
+  ASSERT_TRUE(outer.step());
+  {
+    auto inner = raw.prepare("SELECT id FROM jobs WHERE id >= ?1 ORDER BY id");
+    inner.bind(1, 2);
+    ASSERT_TRUE(inner.step());
+    EXPECT_EQ(inner.int64(0), 2);
+  }
+  EXPECT_EQ(outer.int64(0), 1);
+  ASSERT_TRUE(outer.step());
+  EXPECT_EQ(outer.int64(0), 2);
+  EXPECT_FALSE(outer.step());
 }
 
 TEST_F(StoreTest, ClaimsOldestFirstAndEmptyQueueGivesNothing) {
@@ -384,7 +656,7 @@ TEST_F(StoreTest, DeletedFilesAreRecordedOnceAndOnlyForAFinishedJob) {
 }
 
 TEST_F(StoreTest, ListsNewestFirstInPagesAndByState) {
-  for (int i = 0; i < 5; ++i) submit("r" + std::to_string(i));
+  for (const char* id : {"r0", "r1", "r2", "r3", "r4"}) submit(id);
   claim(kT0);
   const auto p1 = store_->list({}, 2, 0);
   ASSERT_EQ(p1.jobs.size(), 2u);
