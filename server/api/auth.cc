@@ -6,7 +6,7 @@
 
 namespace sph::server::api {
 
-grpc::Status TokenCheck::check(const grpc::ServerContext& context) const {
+grpc::Status TokenCheck::check(const grpc::ServerContextBase& context) const {
   if (token_.empty()) return grpc::Status::OK;
   const auto& md = context.client_metadata();
   const auto it = md.find(service::kAuthorizationKey);

@@ -13,7 +13,7 @@ class TokenCheck {
  public:
   // An empty token accepts every call (no --token-file given).
   explicit TokenCheck(std::string token) : token_(std::move(token)) {}
-  grpc::Status check(const grpc::ServerContext& context) const;
+  grpc::Status check(const grpc::ServerContextBase& context) const;
   bool enabled() const { return !token_.empty(); }
 
  private:

@@ -11,6 +11,9 @@
 #include "case/study_ladder.h"
 #include "case/validate.h"
 #include "server/api/errors.h"
+#include "server/api/fetch_result_reactor.h"
+#include "server/api/refused_stream.h"
+#include "server/api/watch_job_reactor.h"
 #include "server/clock.h"
 #include "server/common/job_state.h"
 #include "server/common/log.h"
@@ -26,10 +29,6 @@ namespace {
 constexpr size_t kMaxRequestIdLength = 128;
 constexpr int kDefaultPageSize = 100;
 constexpr int kMaxPageSize = 1000;
-constexpr int kEventBatch = 500;
-constexpr size_t kChunkBytes = 1 << 20;
-// How often a waiting stream looks at client cancellation and server shutdown.
-constexpr std::chrono::milliseconds kWatchPoll{250};
 
 grpc::Status parse_id(const std::string& text, std::int64_t& id) {
   const auto parsed = store::parse_job_id(text);
@@ -50,10 +49,6 @@ grpc::Status check_request_id(const std::string& id) {
     if (!std::isalnum(ch) && ch != '.' && ch != '_' && ch != ':' && ch != '-')
       return invalid_argument("request_id", "may contain only letters, digits and . _ : -");
   return grpc::Status::OK;
-}
-
-bool is_terminal_event(const v1::JobEvent& e) {
-  return e.has_state_change() && service::is_terminal(e.state_change().state());
 }
 
 }  // namespace
@@ -164,39 +159,19 @@ grpc::Status JobServiceImpl::ListJobs(grpc::ServerContext* context,
   });
 }
 
-grpc::Status JobServiceImpl::WatchJob(grpc::ServerContext* context,
-                                      const v1::WatchJobRequest* request,
-                                      grpc::ServerWriter<v1::JobEvent>* writer) {
-  if (auto s = auth_.check(*context); !s.ok()) return s;
+grpc::ServerWriteReactor<v1::JobEvent>* JobServiceImpl::WatchJob(
+    grpc::CallbackServerContext* context, const v1::WatchJobRequest* request) {
+  using Refused = RefusedStream<v1::JobEvent>;
+  if (auto s = auth_.check(*context); !s.ok()) return new Refused(s);
   std::int64_t id = 0;
-  if (auto s = parse_id(request->job_id(), id); !s.ok()) return s;
-  if (request->after_sequence() < 0) return invalid_argument("after_sequence", "must be >= 0");
-  return guarded([&] {
-    store_.state(id);  // NOT_FOUND before the stream starts
-    EventFeed::Subscription sub(feed_, id);
-    std::int64_t last = request->after_sequence();
-    while (true) {
-      // The state is read before the events: a job that finishes between the two reads has
-      // its last events read here, and is found finished only on the next round, after they
-      // were sent.
-      const bool finished = service::is_terminal(store_.state(id));
-      const auto events = store_.events_after(id, last, kEventBatch);
-      for (const auto& e : events) {
-        if (!writer->Write(e)) return grpc::Status(grpc::StatusCode::CANCELLED, "client went away");
-        last = e.sequence();
-        if (is_terminal_event(e)) return grpc::Status::OK;
-      }
-      if (!events.empty()) continue;
-      // Nothing newer: a finished job has nothing more to say (the terminal event is last).
-      if (finished) return grpc::Status::OK;
-      if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "cancelled");
-      if (feed_.shutting_down())
-        return grpc::Status(
-            grpc::StatusCode::UNAVAILABLE,
-            "server shutting down; resume with after_sequence=" + std::to_string(last));
-      sub.wait(last, kWatchPoll);
-    }
-  });
+  if (auto s = parse_id(request->job_id(), id); !s.ok()) return new Refused(s);
+  if (request->after_sequence() < 0)
+    return new Refused(invalid_argument("after_sequence", "must be >= 0"));
+  StreamLimiter::Slot slot;
+  if (auto s = streams_.acquire("WatchJob", stream_client(*context), slot); !s.ok())
+    return new Refused(s);
+  return new WatchJobReactor(store_, feed_, stream_work_, std::move(slot), id,
+                             request->after_sequence());
 }
 
 grpc::Status JobServiceImpl::CancelJob(grpc::ServerContext* context,
@@ -212,82 +187,20 @@ grpc::Status JobServiceImpl::CancelJob(grpc::ServerContext* context,
   });
 }
 
-grpc::Status JobServiceImpl::FetchResult(grpc::ServerContext* context,
-                                         const v1::FetchResultRequest* request,
-                                         grpc::ServerWriter<v1::FileChunk>* writer) {
-  if (auto s = auth_.check(*context); !s.ok()) return s;
+grpc::ServerWriteReactor<v1::FileChunk>* JobServiceImpl::FetchResult(
+    grpc::CallbackServerContext* context, const v1::FetchResultRequest* request) {
+  using Refused = RefusedStream<v1::FileChunk>;
+  if (auto s = auth_.check(*context); !s.ok()) return new Refused(s);
   std::int64_t id = 0;
-  if (auto s = parse_id(request->job_id(), id); !s.ok()) return s;
-  if (request->offset() < 0) return invalid_argument("offset", "must be >= 0");
+  if (auto s = parse_id(request->job_id(), id); !s.ok()) return new Refused(s);
+  if (request->offset() < 0) return new Refused(invalid_argument("offset", "must be >= 0"));
   if (request->offset() > 0 && request->file().empty())
-    return invalid_argument("offset", "needs a single file");
-  return guarded([&] {
-    const v1::Job job = store_.get(id, false);
-    const auto deleted = [&] {
-      return grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
-                          job.id() + "'s files were deleted at " +
-                              service::format_unix_seconds(
-                                  store_.get(id, false).files_deleted_unix_ms() / 1000, true) +
-                              " (sphctl delete)");
-    };
-    if (job.files_deleted_unix_ms() > 0) return deleted();
-    if (!job.has_result() || job.result().files_size() == 0)
-      return grpc::Status(
-          grpc::StatusCode::FAILED_PRECONDITION,
-          job.id() + " has no result yet (" + service::state_name(job.state()) + ")");
-    const auto& manifest = job.result();
-    std::vector<const v1::ResultFile*> files;
-    std::string names;
-    for (const auto& f : manifest.files()) {
-      names += (names.empty() ? "" : ", ") + f.name();
-      if (request->file().empty() || request->file() == f.name()) files.push_back(&f);
-    }
-    // Only what the manifest lists is served: the name is compared, never used as a path.
-    if (files.empty())
-      return grpc::Status(grpc::StatusCode::NOT_FOUND, "file: '" + request->file() +
-                                                           "' is not in the result manifest of " +
-                                                           job.id() + " (" + names + ")");
-    std::vector<char> buf(kChunkBytes);
-    for (const v1::ResultFile* f : files) {
-      if (auto problem = layout_.check_result_name(job.id(), manifest.attempt(), f->name()))
-        return grpc::Status(grpc::StatusCode::DATA_LOSS,
-                            "result file " + f->name() + " " + *problem);
-      const auto path = layout_.attempt_dir(job.id(), manifest.attempt()) / f->name();
-      std::ifstream in(path, std::ios::binary);
-      // Deleted while this fetch went on: the delete is recorded before the files go.
-      if (!in && store_.get(id, false).files_deleted_unix_ms() > 0) return deleted();
-      if (!in) return grpc::Status(grpc::StatusCode::DATA_LOSS, "cannot read " + path.string());
-      in.seekg(0, std::ios::end);
-      const std::int64_t size = in.tellg();
-      if (size != f->size())
-        return grpc::Status(grpc::StatusCode::DATA_LOSS,
-                            path.string() + " has " + std::to_string(size) +
-                                " bytes but the manifest says " + std::to_string(f->size()));
-      if (request->offset() > size)
-        return grpc::Status(grpc::StatusCode::OUT_OF_RANGE, "offset: beyond the end of the file");
-      std::int64_t offset = request->offset();
-      in.seekg(offset);
-      do {
-        if (context->IsCancelled()) return grpc::Status(grpc::StatusCode::CANCELLED, "cancelled");
-        if (feed_.shutting_down())
-          return grpc::Status(
-              grpc::StatusCode::UNAVAILABLE,
-              "server shutting down; resume " + f->name() + " at offset " + std::to_string(offset));
-        in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
-        const auto n = in.gcount();
-        v1::FileChunk chunk;
-        chunk.set_name(f->name());
-        chunk.set_offset(offset);
-        chunk.set_data(buf.data(), static_cast<size_t>(n));
-        chunk.set_size(f->size());
-        chunk.set_sha256(f->sha256());
-        if (!writer->Write(chunk))
-          return grpc::Status(grpc::StatusCode::CANCELLED, "client went away");
-        offset += n;
-      } while (offset < size);
-    }
-    return grpc::Status::OK;
-  });
+    return new Refused(invalid_argument("offset", "needs a single file"));
+  StreamLimiter::Slot slot;
+  if (auto s = streams_.acquire("FetchResult", stream_client(*context), slot); !s.ok())
+    return new Refused(s);
+  return new FetchResultReactor(store_, feed_, layout_, std::move(slot), id, request->file(),
+                                request->offset());
 }
 
 grpc::Status JobServiceImpl::DeleteJobFiles(grpc::ServerContext* context,

@@ -3,6 +3,8 @@
 #include <mutex>
 
 #include "server/api/auth.h"
+#include "server/api/stream_limiter.h"
+#include "server/api/work_queue.h"
 #include "server/events/event_feed.h"
 #include "server/results/result_layout.h"
 #include "server/store/job_store.h"
@@ -12,9 +14,15 @@ namespace sph::server::api {
 
 struct JobServiceLimits {
   double max_particles = 0;  // per case, 0 = no limit
+  int max_streams_per_client = 256;
 };
 
-class JobServiceImpl final : public v1::JobService::Service {
+// WatchJob and FetchResult are callback (reactor) methods, so that an open stream costs
+// memory and no thread; the other methods are synchronous.
+using JobServiceBase = v1::JobService::WithCallbackMethod_WatchJob<
+    v1::JobService::WithCallbackMethod_FetchResult<v1::JobService::Service>>;
+
+class JobServiceImpl final : public JobServiceBase {
  public:
   JobServiceImpl(store::JobStore& store, EventFeed& feed, const ResultLayout& layout,
                  const TokenCheck& auth, JobServiceLimits limits)
@@ -26,12 +34,14 @@ class JobServiceImpl final : public v1::JobService::Service {
                       v1::Job* response) override;
   grpc::Status ListJobs(grpc::ServerContext* context, const v1::ListJobsRequest* request,
                         v1::ListJobsResponse* response) override;
-  grpc::Status WatchJob(grpc::ServerContext* context, const v1::WatchJobRequest* request,
-                        grpc::ServerWriter<v1::JobEvent>* writer) override;
+  using JobServiceBase::FetchResult;  // the synchronous forms, which the mixins disable
+  using JobServiceBase::WatchJob;
+  grpc::ServerWriteReactor<v1::JobEvent>* WatchJob(grpc::CallbackServerContext* context,
+                                                   const v1::WatchJobRequest* request) override;
   grpc::Status CancelJob(grpc::ServerContext* context, const v1::CancelJobRequest* request,
                          v1::Job* response) override;
-  grpc::Status FetchResult(grpc::ServerContext* context, const v1::FetchResultRequest* request,
-                           grpc::ServerWriter<v1::FileChunk>* writer) override;
+  grpc::ServerWriteReactor<v1::FileChunk>* FetchResult(
+      grpc::CallbackServerContext* context, const v1::FetchResultRequest* request) override;
   grpc::Status DeleteJobFiles(grpc::ServerContext* context,
                               const v1::DeleteJobFilesRequest* request,
                               v1::DeleteJobFilesResponse* response) override;
@@ -44,6 +54,10 @@ class JobServiceImpl final : public v1::JobService::Service {
   JobServiceLimits limits_;
   // One removal at a time: two racing calls would each count what the other removed.
   std::mutex delete_mu_;
+  // Open WatchJob and FetchResult streams per client, and the threads that read the store
+  // for watches the event feed wakes.
+  StreamLimiter streams_{limits_.max_streams_per_client};
+  WorkQueue stream_work_{2};
 };
 
 }  // namespace sph::server::api
