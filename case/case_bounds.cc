@@ -40,71 +40,64 @@ void for_each_part(const v1::Shape& s, Fn&& fn) {
   }
 }
 
-// Whether messages of type d can hold a string field anywhere below them (memoised; the
-// schema is a finite graph, Shape refers to itself).
-class StringHolders {
- public:
-  bool may_hold(const pb::Descriptor* d) {
-    auto it = memo_.find(d);
-    if (it != memo_.end()) return it->second;
-    memo_[d] = false;  // a cycle adds nothing the other fields of the cycle do not
-    bool holds = false;
-    for (int i = 0; i < d->field_count() && !holds; ++i) {
-      const auto* f = d->field(i);
-      if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_STRING)
-        holds = true;
-      else if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_MESSAGE)
-        holds = may_hold(f->message_type());
-    }
-    memo_[d] = holds;
-    return holds;
-  }
-
- private:
-  std::map<const pb::Descriptor*, bool> memo_;
-};
-
 std::size_t string_limit(const pb::FieldDescriptor* f) {
   if (f->name() == "description") return kMaxDescriptionBytes;
   if (f->name() == "file") return kMaxPathBytes;
   return kMaxNameBytes;
 }
 
-// Every string field of the case against its limit, walked with an explicit stack.
-void check_strings(const v1::Case& c, std::vector<FieldError>& errors) {
-  StringHolders holders;
+// One value of a string or floating-point field: its length against the field's limit, or
+// whether it is a number. No field of a case means anything by NaN or infinity, and the checks
+// after these compare numbers, which NaN passes silently (an initial temperature of NaN was
+// accepted until every number was checked here).
+void check_value(const pb::Message& m, const pb::FieldDescriptor* f, int i,
+                 const std::string& field, std::vector<FieldError>& errors) {
+  const pb::Reflection* r = m.GetReflection();
+  if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_STRING) {
+    std::string scratch;
+    const std::string& v = i < 0 ? r->GetStringReference(m, f, &scratch)
+                                 : r->GetRepeatedStringReference(m, f, i, &scratch);
+    const std::size_t limit = string_limit(f);
+    if (v.size() > limit)
+      errors.push_back({field, "is " + std::to_string(v.size()) + " bytes long; the limit is " +
+                                   std::to_string(limit)});
+    return;
+  }
+  double v = 0;
+  if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_DOUBLE)
+    v = i < 0 ? r->GetDouble(m, f) : r->GetRepeatedDouble(m, f, i);
+  else if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_FLOAT)
+    v = static_cast<double>(i < 0 ? r->GetFloat(m, f) : r->GetRepeatedFloat(m, f, i));
+  else
+    return;
+  if (!std::isfinite(v))
+    errors.push_back({field, "is " + number_text(v) + "; every number must be finite"});
+}
+
+// Every string and floating-point field of the case, walked with an explicit stack.
+void check_fields(const v1::Case& c, std::vector<FieldError>& errors) {
   std::vector<std::pair<const pb::Message*, std::string>> stack{{&c, ""}};
   std::vector<const pb::FieldDescriptor*> fields;
   while (!stack.empty()) {
-    const auto [m, path] = stack.back();
+    const pb::Message* m = stack.back().first;
+    const std::string path = std::move(stack.back().second);
     stack.pop_back();
     const pb::Reflection* r = m->GetReflection();
     fields.clear();
     r->ListFields(*m, &fields);
     for (const auto* f : fields) {
       const std::string fp = path.empty() ? f->name() : path + "." + f->name();
-      if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_STRING) {
-        const std::size_t limit = string_limit(f);
-        auto check = [&](const std::string& v, const std::string& field) {
-          if (v.size() > limit)
-            errors.push_back({field, "is " + std::to_string(v.size()) +
-                                         " bytes long; the limit is " + std::to_string(limit)});
-        };
-        std::string scratch;
-        if (f->is_repeated()) {
-          for (int i = 0; i < r->FieldSize(*m, f); ++i)
-            check(r->GetRepeatedStringReference(*m, f, i, &scratch), idx(fp, i));
-        } else {
-          check(r->GetStringReference(*m, f, &scratch), fp);
-        }
-      } else if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_MESSAGE &&
-                 holders.may_hold(f->message_type())) {
+      if (f->cpp_type() == pb::FieldDescriptor::CPPTYPE_MESSAGE) {
         if (f->is_repeated()) {
           for (int i = r->FieldSize(*m, f) - 1; i >= 0; --i)
             stack.emplace_back(&r->GetRepeatedMessage(*m, f, i), idx(fp, i));
         } else {
           stack.emplace_back(&r->GetMessage(*m, f), fp);
         }
+      } else if (f->is_repeated()) {
+        for (int i = 0; i < r->FieldSize(*m, f); ++i) check_value(*m, f, i, idx(fp, i), errors);
+      } else {
+        check_value(*m, f, -1, fp, errors);
       }
     }
   }
@@ -290,7 +283,7 @@ std::string shape_depth_error(int depth) {
 
 std::vector<FieldError> check_case_bounds(const v1::Case& c) {
   std::vector<FieldError> errors;
-  check_strings(c, errors);
+  check_fields(c, errors);
   check_counts(c, errors);
   check_shapes(c, errors);
   check_lattice_range(c, errors);

@@ -22,7 +22,8 @@ ShapeTreeSize measure_shape(const v1::Shape& s);
 // "shapes nest 4000 deep; the limit is 32" when `depth` exceeds kMaxShapeDepth, else "".
 std::string shape_depth_error(int depth);
 
-// Errors for every bound the case breaks: string lengths, counts of repeated parts, shape
+// Errors for every bound the case breaks: string lengths, numbers that are not finite (NaN,
+// infinities), counts of repeated parts, shape
 // depth and count, points, and the lattice range of dx, domain and lattice_origin. A case with
 // any of these errors must not be validated further.
 std::vector<FieldError> check_case_bounds(const v1::Case& c);

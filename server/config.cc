@@ -16,6 +16,11 @@ constexpr const char* kUsage = R"(usage: sph-server [options]
   --lease SECONDS         lease a pool must renew by reporting (default 30)
   --token-file FILE       require "authorization: Bearer <token>" on every call
   --max-particles N       reject cases estimated above N particles (default 2e7, 0 = no limit)
+  --max-memory-gib G      reject cases estimated to need more than G GiB (default 64, 0 = no limit)
+  --max-queued-jobs N     refuse submits while N jobs are queued or running (default 10000, 0 = no limit)
+  --max-queued-particles N  refuse submits that would bring the estimated particles of queued and
+                          running jobs above N (default 1e9, 0 = no limit)
+  --max-streams-per-client N  open WatchJob/FetchResult streams per client (default 256)
   --max-lost-leases N     fail a job after its pool was lost N times (default 5)
   --shutdown-grace SECONDS  time open calls get on SIGTERM before they are cut (default 5)
 )";
@@ -59,7 +64,16 @@ std::optional<ServerConfig> parse_server_args(int argc, char** argv, int& exit_c
       ok = parse_double(v, c.lease_seconds) && c.lease_seconds > 0;
     else if (a == "--max-particles")
       ok = parse_double(v, c.max_particles) && c.max_particles >= 0;
-    else if (a == "--shutdown-grace")
+    else if (a == "--max-memory-gib")
+      ok = parse_double(v, c.max_memory_gib) && c.max_memory_gib >= 0;
+    else if (a == "--max-queued-jobs")
+      ok = parse_double(v, c.max_queued_jobs) && c.max_queued_jobs >= 0;
+    else if (a == "--max-queued-particles")
+      ok = parse_double(v, c.max_queued_particles) && c.max_queued_particles >= 0;
+    else if (a == "--max-streams-per-client") {
+      ok = parse_double(v, number) && number >= 1 && number <= 1e6;
+      c.max_streams_per_client = static_cast<int>(number);
+    } else if (a == "--shutdown-grace")
       ok = parse_double(v, c.shutdown_grace_seconds) && c.shutdown_grace_seconds >= 0;
     else if (a == "--max-lost-leases") {
       ok = parse_double(v, number) && number >= 1;

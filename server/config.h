@@ -12,7 +12,15 @@ struct ServerConfig {
   std::string results_dir = "results";
   double lease_seconds = 30;
   std::string token_file;
+  // Per job: cases estimated above these are refused at submit (0 = no limit).
   double max_particles = 2e7;
+  double max_memory_gib = 64;
+  // Per queue: what all unfinished (queued or running) jobs may add up to before a submit is
+  // refused with RESOURCE_EXHAUSTED (0 = no limit).
+  double max_queued_jobs = 10000;
+  double max_queued_particles = 1e9;
+  // Open WatchJob and FetchResult streams one client (peer host and token) may hold.
+  int max_streams_per_client = 256;
   int max_lost_leases = 5;
   double shutdown_grace_seconds = 5;
 };

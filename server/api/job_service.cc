@@ -13,6 +13,7 @@
 #include "server/api/errors.h"
 #include "server/api/fetch_result_reactor.h"
 #include "server/api/refused_stream.h"
+#include "server/api/stored_case_text.h"
 #include "server/api/watch_job_reactor.h"
 #include "server/clock.h"
 #include "server/common/job_state.h"
@@ -29,6 +30,7 @@ namespace {
 constexpr size_t kMaxRequestIdLength = 128;
 constexpr int kDefaultPageSize = 100;
 constexpr int kMaxPageSize = 1000;
+constexpr std::size_t kMaxListPageBytes = 4 << 20;
 
 grpc::Status parse_id(const std::string& text, std::int64_t& id) {
   const auto parsed = store::parse_job_id(text);
@@ -51,6 +53,22 @@ grpc::Status check_request_id(const std::string& id) {
   return grpc::Status::OK;
 }
 
+// Jobs stored before names and reasons were bounded may carry megabytes of either; a listing
+// shows their beginning (GetJob still shows them whole).
+void shorten_for_listing(v1::Job& j) {
+  const auto shorten = [](std::string& text) {
+    if (text.size() > service::kMaxListedTextBytes) {
+      // Cut at a character boundary: a proto3 string must stay valid UTF-8.
+      std::size_t end = service::kMaxListedTextBytes;
+      while (end > 0 && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80) --end;
+      text.resize(end);
+      text += "...";
+    }
+  };
+  shorten(*j.mutable_name());
+  shorten(*j.mutable_reason());
+}
+
 }  // namespace
 
 grpc::Status JobServiceImpl::Submit(grpc::ServerContext* context, const v1::SubmitRequest* request,
@@ -68,7 +86,8 @@ grpc::Status JobServiceImpl::Submit(grpc::ServerContext* context, const v1::Subm
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
                           std::string("invalid case: case_text: ") + e.what());
     }
-    const auto errors = validate_case(c, ValidationLimits{limits_.max_particles});
+    const auto errors =
+        validate_case(c, ValidationLimits{limits_.max_particles, limits_.max_memory_bytes});
     if (!errors.empty()) {
       for (const auto& e : errors)
         context->AddTrailingMetadata("sph-invalid-field", e.field.empty() ? "." : e.field);
@@ -78,7 +97,18 @@ grpc::Status JobServiceImpl::Submit(grpc::ServerContext* context, const v1::Subm
     store::NewJob job;
     job.request_id = request->request_id();
     job.name = c.name();
-    job.case_text = case_to_text(c);
+    // Bounded by a small multiple of what was sent (server/api/stored_case_text.h): a compact
+    // text of deeply nested shapes is stored on one line rather than quadratically indented.
+    auto stored = stored_case_text(c, request->case_text().size());
+    if (!stored) {
+      context->AddTrailingMetadata("sph-invalid-field", "case_text");
+      return invalid_argument(
+          "case_text", "its stored form is more than " +
+                           std::to_string(max_stored_case_bytes(request->case_text().size())) +
+                           " bytes (4 times the " + std::to_string(request->case_text().size()) +
+                           " bytes sent, plus 64 KiB)");
+    }
+    job.case_text = std::move(*stored);
     if (job.case_text.size() > service::kMaxCaseTextBytes) {
       context->AddTrailingMetadata("sph-invalid-field", "case_text");
       return invalid_argument(
@@ -94,8 +124,8 @@ grpc::Status JobServiceImpl::Submit(grpc::ServerContext* context, const v1::Subm
     if (request->has_study()) {
       // The ladder is checked as the case is: each level must pass (the particle limit
       // applies to the finest), and the case needs a reference.
-      const auto study_errors =
-          validate_study(c, request->study(), ValidationLimits{limits_.max_particles});
+      const auto study_errors = validate_study(
+          c, request->study(), ValidationLimits{limits_.max_particles, limits_.max_memory_bytes});
       if (!study_errors.empty()) {
         for (const auto& e : study_errors)
           context->AddTrailingMetadata("sph-invalid-field", e.field.empty() ? "." : e.field);
@@ -109,7 +139,14 @@ grpc::Status JobServiceImpl::Submit(grpc::ServerContext* context, const v1::Subm
       job.estimated_particles = estimate_case(level_case(c, ladder.back())).total();
     }
     job.case_sha256 = h.hex_digest();
-    auto result = store_.submit(job, now_unix_ms());
+    store::SubmitResult result;
+    try {
+      result =
+          store_.submit(job, now_unix_ms(),
+                        store::QueueLimits{limits_.max_queued_jobs, limits_.max_queued_particles});
+    } catch (const store::QueueFull& e) {
+      return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED, e.what());
+    }
     if (result.created)
       service::log_line("%s submitted (%s, about %.0f particles, request %s)",
                         result.job.id().c_str(), job.name.c_str(), job.estimated_particles,
@@ -140,7 +177,7 @@ grpc::Status JobServiceImpl::ListJobs(grpc::ServerContext* context,
       request->page_size() == 0 ? kDefaultPageSize : std::min(request->page_size(), kMaxPageSize);
   std::int64_t before = 0;
   if (!request->page_token().empty()) {
-    const auto parsed = store::parse_job_id(request->page_token());
+    const auto parsed = store::parse_page_token(request->page_token());
     if (!parsed) return invalid_argument("page_token", "is not a token from ListJobs");
     before = *parsed;
   }
@@ -153,7 +190,20 @@ grpc::Status JobServiceImpl::ListJobs(grpc::ServerContext* context,
   }
   return guarded([&] {
     auto page = store_.list(states, page_size, before);
-    for (auto& j : page.jobs) *response->add_jobs() = std::move(j);
+    // A page is bounded in bytes as well as in jobs, so that no stored job can make listing
+    // fail for everyone: the page ends early and the token continues below its last job.
+    std::size_t bytes = 0;
+    for (auto& j : page.jobs) {
+      shorten_for_listing(j);
+      const std::size_t size = j.ByteSizeLong();
+      if (response->jobs_size() > 0 && bytes + size > kMaxListPageBytes) {
+        page.next_before =
+            store::parse_job_id(response->jobs(response->jobs_size() - 1).id()).value_or(0);
+        break;
+      }
+      bytes += size;
+      *response->add_jobs() = std::move(j);
+    }
     if (page.next_before > 0) response->set_next_page_token(std::to_string(page.next_before));
     return grpc::Status::OK;
   });
@@ -179,6 +229,10 @@ grpc::Status JobServiceImpl::CancelJob(grpc::ServerContext* context,
   if (auto s = auth_.check(*context); !s.ok()) return s;
   std::int64_t id = 0;
   if (auto s = parse_id(request->job_id(), id); !s.ok()) return s;
+  if (request->reason().size() > service::kMaxCancelReasonBytes)
+    return invalid_argument("reason", "is " + std::to_string(request->reason().size()) +
+                                          " bytes; the limit is " +
+                                          std::to_string(service::kMaxCancelReasonBytes));
   return guarded([&] {
     *response = store_.cancel(id, request->reason(), now_unix_ms());
     service::log_line("%s: cancel requested, now %s", response->id().c_str(),

@@ -1,12 +1,15 @@
 #include "server/api/worker_service.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "server/api/errors.h"
 #include "server/clock.h"
 #include "server/common/job_state.h"
 #include "server/common/log.h"
+#include "server/common/message_limits.h"
+#include "server/store/job_ids.h"
 
 namespace sph::server::api {
 namespace {
@@ -14,6 +17,9 @@ namespace {
 // A long poll is capped so that a pool notices a lost server within a reasonable time.
 constexpr double kMaxClaimWaitSeconds = 20;
 constexpr std::chrono::milliseconds kClaimPoll{500};
+// A result is a handful of files (result.h5, result.xmf, a study's levels); the manifest comes
+// back in every listing of the job.
+constexpr int kMaxResultFiles = 1000;
 
 bool is_sha256_hex(const std::string& s) {
   return s.size() == 64 && std::all_of(s.begin(), s.end(), [](char ch) {
@@ -37,6 +43,9 @@ grpc::Status WorkerServiceImpl::Claim(grpc::ServerContext* context, const v1::Cl
   if (auto s = auth_.check(*context); !s.ok()) return s;
   if (request->pool_id().empty()) return invalid_argument("pool_id", "is required");
   if (request->ranks() < 1) return invalid_argument("ranks", "must be >= 1");
+  // Found by the RPC fuzzer: NaN passed the clamp below and became an undefined conversion.
+  if (!std::isfinite(request->wait_seconds()))
+    return invalid_argument("wait_seconds", "must be a finite number of seconds");
   const double wait = std::clamp(request->wait_seconds(), 0.0, kMaxClaimWaitSeconds);
   const auto deadline =
       EventFeed::Clock::now() +
@@ -75,12 +84,17 @@ grpc::Status WorkerServiceImpl::Report(grpc::ServerContext* context,
                                        const v1::ReportRequest* request,
                                        v1::ReportResponse* response) {
   if (auto s = auth_.check(*context); !s.ok()) return s;
-  for (int i = 0; i < request->checkpoints_size(); ++i)
-    if (auto s = check_checkpoint(request->job_id(), request->checkpoints(i),
-                                  "checkpoints[" + std::to_string(i) + "]");
-        !s.ok())
-      return s;
+  const auto id = store::parse_job_id(request->job_id());
+  if (!id)
+    return invalid_argument("job_id", "'" + request->job_id() + "' is not a job id (job-<n>)");
   return guarded([&] {
+    // The job is resolved in the database before any path is built from its id.
+    const std::string job_id = store_.get(*id, false).id();
+    for (int i = 0; i < request->checkpoints_size(); ++i)
+      if (auto s = check_checkpoint(job_id, request->checkpoints(i),
+                                    "checkpoints[" + std::to_string(i) + "]");
+          !s.ok())
+        return s;
     *response = store_.report(*request, now_unix_ms());
     return grpc::Status::OK;
   });
@@ -90,6 +104,9 @@ grpc::Status WorkerServiceImpl::Finish(grpc::ServerContext* context,
                                        const v1::FinishRequest* request,
                                        v1::FinishResponse* response) {
   if (auto s = auth_.check(*context); !s.ok()) return s;
+  const auto id = store::parse_job_id(request->job_id());
+  if (!id)
+    return invalid_argument("job_id", "'" + request->job_id() + "' is not a job id (job-<n>)");
   switch (request->outcome()) {
     case v1::ATTEMPT_COMPLETED:
     case v1::ATTEMPT_FAILED:
@@ -99,33 +116,55 @@ grpc::Status WorkerServiceImpl::Finish(grpc::ServerContext* context,
     default:
       return invalid_argument("outcome", "must be COMPLETED, FAILED, CANCELLED or INTERRUPTED");
   }
-  if (request->has_checkpoint() && !request->checkpoint().path().empty())
-    if (auto s = check_checkpoint(request->job_id(), request->checkpoint(), "checkpoint"); !s.ok())
-      return s;
-  // The manifest is what FetchResult will serve: every entry must be a file of this attempt,
-  // with the size the pool says it has.
-  for (int i = 0; i < request->files_size(); ++i) {
-    const auto& f = request->files(i);
-    const std::string field = "files[" + std::to_string(i) + "]";
-    if (auto problem = layout_.check_result_name(request->job_id(), request->attempt(), f.name()))
-      return invalid_argument(field + ".name", "'" + f.name() + "' " + *problem);
-    std::error_code ec;
-    const auto size = std::filesystem::file_size(
-        layout_.attempt_dir(request->job_id(), request->attempt()) / f.name(), ec);
-    if (ec || static_cast<std::int64_t>(size) != f.size())
-      return invalid_argument(field + ".size", std::to_string(f.size()) +
-                                                   " does not match the file on disk (" +
-                                                   std::to_string(size) + " bytes)");
-    if (!is_sha256_hex(f.sha256()))
-      return invalid_argument(field + ".sha256", "must be 64 lowercase hex digits");
-  }
+  if (request->files_size() > kMaxResultFiles)
+    return invalid_argument("files", std::to_string(request->files_size()) +
+                                         " files; the limit is " + std::to_string(kMaxResultFiles));
   return guarded([&] {
-    const v1::JobState state = store_.finish(*request, now_unix_ms());
+    // The job and the attempt are resolved in the database before any path is built: a file
+    // check of an attempt that is not this job's would answer about folders it does not own.
+    const v1::Job job = store_.get(*id, false);
+    if (request->attempt() < 1 || request->attempt() > job.attempt())
+      return grpc::Status(
+          grpc::StatusCode::ABORTED,
+          "attempt " + std::to_string(request->attempt()) + " of " + job.id() + " does not exist");
+    if (request->has_checkpoint() && !request->checkpoint().path().empty())
+      if (auto s = check_checkpoint(job.id(), request->checkpoint(), "checkpoint"); !s.ok())
+        return s;
+    // The manifest is what FetchResult will serve: every entry must be a file of this
+    // attempt, with the size the pool says it has.
+    for (int i = 0; i < request->files_size(); ++i) {
+      const auto& f = request->files(i);
+      const std::string field = "files[" + std::to_string(i) + "]";
+      if (auto problem = layout_.check_result_name(job.id(), request->attempt(), f.name()))
+        return invalid_argument(field + ".name", "'" + f.name() + "' " + *problem);
+      std::error_code ec;
+      const auto size = std::filesystem::file_size(
+          layout_.attempt_dir(job.id(), request->attempt()) / f.name(), ec);
+      if (ec || static_cast<std::int64_t>(size) != f.size())
+        return invalid_argument(field + ".size", std::to_string(f.size()) +
+                                                     " does not match the file on disk (" +
+                                                     std::to_string(size) + " bytes)");
+      if (!is_sha256_hex(f.sha256()))
+        return invalid_argument(field + ".sha256", "must be 64 lowercase hex digits");
+    }
+    // A pool's diagnosis becomes the job's reason, shown in every listing: a long one is cut
+    // rather than refused, so that the attempt still ends.
+    const v1::FinishRequest* finish = request;
+    v1::FinishRequest shortened;
+    if (request->message().size() > service::kMaxFinishMessageBytes) {
+      shortened = *request;
+      std::size_t end = service::kMaxFinishMessageBytes;
+      while (end > 0 && (static_cast<unsigned char>(shortened.message()[end]) & 0xC0) == 0x80)
+        --end;
+      shortened.mutable_message()->resize(end);
+      *shortened.mutable_message() += "...";
+      finish = &shortened;
+    }
+    const v1::JobState state = store_.finish(*finish, now_unix_ms());
     response->set_state(state);
-    service::log_line("%s attempt %d finished %s -> %s%s%s", request->job_id().c_str(),
-                      request->attempt(), service::outcome_name(request->outcome()),
-                      service::state_name(state), request->message().empty() ? "" : ": ",
-                      request->message().c_str());
+    service::log_line("%s attempt %d finished %s -> %s%s%s", job.id().c_str(), request->attempt(),
+                      service::outcome_name(request->outcome()), service::state_name(state),
+                      finish->message().empty() ? "" : ": ", finish->message().c_str());
     return grpc::Status::OK;
   });
 }

@@ -1,5 +1,6 @@
 #include "server/common/log.h"
 
+#include <atomic>
 #include <chrono>
 #include <cstdarg>
 #include <cstdio>
@@ -11,13 +12,19 @@
 namespace sph::service {
 namespace {
 const char* g_name = "sphd";
-}
+std::atomic<bool> g_enabled{true};
+}  // namespace
 
 void set_log_name(const char* name) {
   g_name = name;
 }
 
+void set_log_enabled(bool enabled) {
+  g_enabled.store(enabled, std::memory_order_relaxed);
+}
+
 void log_line(const char* format, ...) {
+  if (!g_enabled.load(std::memory_order_relaxed)) return;
   const auto now = std::chrono::system_clock::now();
   const std::time_t t = std::chrono::system_clock::to_time_t(now);
   const auto ms =

@@ -11,5 +11,9 @@ namespace sph::service {
 inline constexpr int kMaxMessageBytes = 64 << 20;
 // The case text (as the server stores it, normalised) leaves room for the rest of a message.
 inline constexpr std::size_t kMaxCaseTextBytes = 48 << 20;
+// Texts that come back in every listed job or event are bounded where they enter.
+inline constexpr std::size_t kMaxCancelReasonBytes = 1024;
+inline constexpr std::size_t kMaxFinishMessageBytes = 4096;  // longer ones are cut, not refused
+inline constexpr std::size_t kMaxListedTextBytes = 1024;
 
 }  // namespace sph::service

@@ -1,6 +1,9 @@
 #include "server/results/result_layout.h"
 
 #include <algorithm>
+#include <stdexcept>
+
+#include "server/store/job_ids.h"
 
 namespace sph::server {
 namespace fs = std::filesystem;
@@ -21,6 +24,11 @@ bool is_below(const fs::path& dir, const fs::path& child) {
 ResultLayout::ResultLayout(const fs::path& root) : root_(fs::absolute(root).lexically_normal()) {}
 
 fs::path ResultLayout::job_dir(const std::string& job_id) const {
+  // Paths are built only from the canonical form the database gives ("job-42"): anything else
+  // ("/etc", "8", "..") would name a folder that is not this job's. Callers resolve the job
+  // first, so this throwing means a bug, not bad input.
+  if (!store::parse_job_id(job_id))
+    throw std::invalid_argument("not a canonical job id: '" + job_id + "'");
   return root_ / job_id;
 }
 

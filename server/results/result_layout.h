@@ -15,6 +15,8 @@ class ResultLayout {
   explicit ResultLayout(const std::filesystem::path& root);
 
   const std::filesystem::path& root() const { return root_; }
+  // `job_id` must be canonical ("job-42", store/job_ids.h); throws std::invalid_argument
+  // otherwise.
   std::filesystem::path job_dir(const std::string& job_id) const;
   std::filesystem::path attempt_dir(const std::string& job_id, int attempt) const;
 

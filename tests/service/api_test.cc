@@ -163,20 +163,31 @@ TEST(ServiceApi, BadCasesAreRejectedNamingTheFieldAndNothingIsStored) {
 TEST(ServiceApi, ALargeCaseReachesItsPoolAndATooLargeOneIsRejectedNamingCaseText) {
   // One message limit on the server and on the clients' channels (server/common/
   // message_limits.h): a case the server accepts must also fit the Claim that hands it to a
-  // pool. A 20 MiB case (a long description stands in for inlined point sets) was accepted
-  // and then could not be claimed while the clients' limit was 16 MiB.
+  // pool. A 20 MiB case was accepted and then could not be claimed while the clients' limit
+  // was 16 MiB. Large cases are inlined point sets: a fluid given as `count` points.
   ServiceHarness h;
   h.start_server();
-  auto with_description = [](std::size_t bytes) {
-    return std::regex_replace(small_case(), std::regex("description: \"[^\"]*\""),
-                              "description: \"" + std::string(bytes, 'x') + "\"");
+  auto with_points = [](int count) {
+    std::string points;
+    points.reserve(static_cast<std::size_t>(count) * 40);
+    char buf[96];
+    for (int i = 0; i < count; ++i) {
+      std::snprintf(buf, sizeof buf, "points{x:%.9f y:%.9f}", 0.01 + 0.38 * (i % 1000) / 1000.0,
+                    0.01 + 0.98 * (i / 1000) / (count / 1000 + 1.0));
+      points += buf;
+    }
+    const std::string box = "shape { box { lo { x: 0 y: 0 } hi { x: 0.4 y: 1 } } }";
+    std::string text = small_case();
+    text.replace(text.find(box), box.size(), "shape { points { " + points + " } }");
+    return text;
   };
-  const v1::Job big = h.submit_text(with_description(20u << 20));
+  const v1::Job big = h.submit_text(with_points(350000));
   EXPECT_EQ(big.state(), v1::JOB_STATE_QUEUED);
   const v1::ClaimResponse c = claim(h);
   EXPECT_EQ(c.job_id(), big.id());
+  std::printf("a case of 350000 points is %zu bytes as claimed\n", c.case_text().size());
   EXPECT_GT(c.case_text().size(), 20u << 20);
-  expect_rejected(h, with_description(50u << 20), "case_text: is 50 MiB");
+  expect_rejected(h, with_points(900000), "case_text: is 5");
   EXPECT_EQ(all_jobs(h).size(), 1u) << "the rejected case was stored";
 }
 

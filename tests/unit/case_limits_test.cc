@@ -306,10 +306,33 @@ TEST(CaseLimits, TinyDxIsRefusedBeforeLatticeArithmetic) {
   EXPECT_TRUE(
       has_error(errs, "domain.hi.x",
                 "lies 2e300 cells of dx = 1e-300 from lattice_origin.x; the limit is 2^31"));
-  for (const char* bad : {"dx: inf", "dx: nan", "dx: -1"}) {
+  for (const char* bad : {"dx: inf", "dx: nan"}) {
     const auto e = validate_case(parse_case_text(replace(fluid_case(kBox), "dx: 0.1", bad)));
-    EXPECT_TRUE(has_error(e, "dx", "must be > 0")) << bad << ": " << join_errors(e);
+    EXPECT_TRUE(has_error(e, "dx", "every number must be finite")) << bad << ": " << join_errors(e);
   }
+  const auto e = validate_case(parse_case_text(replace(fluid_case(kBox), "dx: 0.1", "dx: -1")));
+  EXPECT_TRUE(has_error(e, "dx", "must be > 0")) << join_errors(e);
+}
+
+// Found by the case-text fuzzer: a body's initial temperature of NaN was accepted (the checks
+// compare numbers, and NaN fails no comparison), and NaN never equals itself.
+TEST(CaseLimits, EveryNumberMustBeFinite) {
+  const std::string base = fluid_case(kBox);
+  struct Probe {
+    const char* from;
+    const char* to;
+    const char* field;
+  };
+  for (const Probe& p :
+       {Probe{"density: 1000", "density: nan", "materials[0].density"},
+        Probe{"end_time: 1", "end_time: inf", "time.end_time"},
+        Probe{"lo{x:0.5", "lo{x:-inf", "fluids[0].shape.box.lo.x"},
+        Probe{"sound_speed: 10", "sound_speed: -nan", "materials[0].eos.sound_speed"}}) {
+    const auto errs = validate_case(parse_case_text(replace(base, p.from, p.to)));
+    std::printf("%s -> %s\n", p.to, join_errors(errs).c_str());
+    EXPECT_TRUE(has_error(errs, p.field, "every number must be finite")) << join_errors(errs);
+  }
+  EXPECT_TRUE(validate_case(parse_case_text(base)).empty());
 }
 
 // Before: estimated 406 particles and ran with 6.
