@@ -14,6 +14,7 @@ packages=(
   libgrpc++-dev libgrpc-dev protobuf-compiler-grpc libssl-dev  # the service (gRPC config needs all)
   libsqlite3-dev                               # the job queue
   libgtest-dev libbenchmark-dev                # tests
+  clang libclang-rt-14-dev                     # the fuzz targets (libFuzzer, sanitizers)
   python3 python3-numpy python3-h5py python3-matplotlib  # result checks and report plots
 )
 missing=()

@@ -2,6 +2,7 @@
 # Builds sphd and runs the whole test suite (unit, validation, MPI, service).
 #   deploy/run-tests.sh [BUILD_DIR]          (default: build)
 # Set SPHD_SANITIZE=ON to build and test with AddressSanitizer + UBSan instead.
+# Then the fuzz targets run SPHD_FUZZ_SECONDS (default 60) each (tests/fuzz/run.sh).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${1:-$root/build}
@@ -12,3 +13,5 @@ cmake --build "$build" -j"$(nproc)"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
 ctest --test-dir "$build" --output-on-failure --timeout 900
+# The fuzz targets for a bounded time (tests/fuzz/README.md): clang, libFuzzer, ASan, UBSan.
+"$root/tests/fuzz/run.sh" "${SPHD_FUZZ_SECONDS:-60}" "$build-fuzz"
