@@ -80,4 +80,28 @@ inline constexpr double kMinDx = 1e-12;
 // lies outside has no effect.
 inline constexpr double kMinRegionFractionInDomain = 0.5;
 
+// --- Work of validation and estimates ---------------------------------------------------------
+// Validation and estimates test lattice points against the regions' shapes, and within the
+// bounds above a region can span billions of points, a shape can hold a thousand parts or a
+// hundred thousand polygon vertices, and a thousand regions can overlap: unbounded, a small
+// request could cost minutes of CPU in the server thread that checks it. So each of these
+// walks has a budget in units of Shape::cost() (one lattice point tested against a box is one
+// unit); the regions share it by what they need (share_work in case/lattice.h), and a region
+// that needs more than its share is counted on a sample of its lattice points. The shipped
+// cases need a few percent of each budget, so they are counted exactly.
+// Counting each region's points inside and around the domain (the checks above).
+inline constexpr double kRegionCheckWork = 8e6;
+// estimate_case: the particles of all regions, each tested against the regions that claim
+// lattice points before it.
+inline constexpr double kEstimateWork = 8e6;
+// The wall-thickness check (case/wall_thickness.h) tags every lattice cell of the domain, so
+// it cannot sample: a case that needs more is not checked.
+inline constexpr double kWallCheckWork = 3e7;
+
+// --- Errors -----------------------------------------------------------------------------------
+// Errors validate_case reports; the rest are counted in one last error. Every vertex or point
+// of a shape can be wrong on its own, and each error carries the field's path: without a cap a
+// request of a few megabytes could make a reply of hundreds.
+inline constexpr int kMaxReportedErrors = 100;
+
 }  // namespace sph

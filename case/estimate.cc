@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
+#include <vector>
 
+#include "case/case_limits.h"
 #include "case/geometry.h"
 #include "case/lattice.h"
 #include "case/materials.h"
@@ -12,24 +15,119 @@
 namespace sph {
 namespace {
 
-// A shape minus the regions claimed before it (walls claim lattice points before bodies,
-// bodies before fluids), as the scene builder does.
+// Where the regions that claim lattice points first lie (walls before bodies, bodies before
+// open-boundary buffers, all of them before fluids, as the scene builder claims them): a grid
+// of bins over the clip box, each listing the claiming shapes whose bounds overlap it in
+// claiming order. A point is tested against the shapes of its own bin only, so a fluid
+// around a thousand grains tests the few grains near each of its points, and the cost of a
+// region's test is known before it is walked.
+class ClaimIndex {
+ public:
+  ClaimIndex(const Aabb& clip, int dim) : clip_(clip) {
+    const int per_axis = dim == 2 ? 32 : 10;
+    for (int a = 0; a < 3; ++a) n_[a] = a < dim && clip.hi[a] > clip.lo[a] ? per_axis : 1;
+    bins_.resize(static_cast<std::size_t>(n_[0] * n_[1] * n_[2]));
+    bin_cost_.assign(bins_.size(), 0.0);
+  }
+
+  // Adds the next claiming shape (kept by the caller).
+  void add(const Shape* s) {
+    const int id = static_cast<int>(shapes_.size());
+    shapes_.push_back({s, s->bounds()});
+    const double cost = s->cost() + 1;  // its bounds are compared first
+    for_each_bin(shapes_.back().bounds, [&](std::size_t b) {
+      bins_[b].push_back(id);
+      bin_cost_[b] += cost;
+    });
+  }
+  int size() const { return static_cast<int>(shapes_.size()); }
+
+  // The most work claimed() does at a point of `box` with every shape added so far.
+  double max_cost(const Aabb& box) const {
+    double m = 0;
+    for_each_bin(box, [&](std::size_t b) { m = std::max(m, bin_cost_[b]); });
+    return m;
+  }
+
+  // Whether one of the first `before` shapes added contains p (a point of the clip box).
+  bool claimed(const Point3& p, int before) const {
+    for (const int id : bins_[bin_of(p)]) {
+      if (id >= before) break;
+      const Entry& e = shapes_[static_cast<std::size_t>(id)];
+      if ((p.array() >= e.bounds.lo.array()).all() && (p.array() <= e.bounds.hi.array()).all() &&
+          e.shape->contains(p))
+        return true;
+    }
+    return false;
+  }
+
+ private:
+  struct Entry {
+    const Shape* shape;
+    Aabb bounds;
+  };
+  int cell(double v, int a) const {
+    const double w = clip_.hi[a] - clip_.lo[a];
+    if (!(w > 0)) return 0;
+    const double f = std::floor((v - clip_.lo[a]) / w * n_[a]);
+    return static_cast<int>(std::clamp(f, 0.0, static_cast<double>(n_[a] - 1)));
+  }
+  std::size_t bin_of(const Point3& p) const {
+    return static_cast<std::size_t>((cell(p.z(), 2) * n_[1] + cell(p.y(), 1)) * n_[0] +
+                                    cell(p.x(), 0));
+  }
+  template <class Fn>
+  void for_each_bin(const Aabb& box, Fn&& fn) const {
+    const Aabb b = box.intersected(clip_);
+    for (int a = 0; a < 3; ++a)
+      if (n_[a] > 1 && b.hi[a] < b.lo[a]) return;
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = n_[a] > 1 ? cell(b.lo[a], a) : 0;
+      hi[a] = n_[a] > 1 ? cell(b.hi[a], a) : 0;
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x)
+          fn(static_cast<std::size_t>((z * n_[1] + y) * n_[0] + x));
+  }
+
+  Aabb clip_;
+  int n_[3] = {1, 1, 1};
+  std::vector<Entry> shapes_;
+  std::vector<std::vector<int>> bins_;  // ids in the order added
+  std::vector<double> bin_cost_;        // cost of testing every shape of the bin
+};
+
+// A shape minus the lattice points of the first `before` claiming shapes.
 class Claimed final : public Shape {
  public:
-  Claimed(const Shape& s, const std::vector<const Shape*>& before) : s_(s), before_(before) {}
+  Claimed(const Shape& s, const ClaimIndex& index, int before, double cost)
+      : s_(s), index_(index), before_(before), cost_(cost) {}
   double distance(const Point3& p) const override {
-    double d = s_.distance(p);
-    if (d >= 0) return d;
-    for (const Shape* b : before_)
-      if (b->contains(p)) return 1.0;
-    return d;
+    const double d = s_.distance(p);
+    if (d >= 0 || before_ == 0) return d;
+    return index_.claimed(p, before_) ? 1.0 : d;
   }
   Aabb bounds() const override { return s_.bounds(); }
+  double cost() const override { return cost_; }
   const std::vector<Point3>* explicit_points() const override { return s_.explicit_points(); }
 
  private:
   const Shape& s_;
-  const std::vector<const Shape*>& before_;
+  const ClaimIndex& index_;
+  int before_;
+  double cost_;
+};
+
+enum RegionKind { kWallRegion, kBodyRegion, kBufferRegion, kFluidRegion };
+
+struct Region {
+  std::unique_ptr<Shape> shape;
+  RegionKind kind;
+  int claimed_by = 0;  // the claiming shapes before it
+  double cost = 0;     // of one test at a lattice point, claims included
+  double need = 0;     // work to test every lattice point
 };
 
 }  // namespace
@@ -72,32 +170,55 @@ CaseEstimate estimate_case(const v1::Case& c) {
   Aabb clip{to_point(c.domain().lo()), to_point(c.domain().hi())};
   if (d == 2) clip.lo.z() = clip.hi.z() = 0.0;
 
-  std::vector<std::unique_ptr<Shape>> owned;
-  std::vector<const Shape*> claimed;
-  for (const auto& w : c.walls()) {
-    owned.push_back(compile_shape(w.shape(), d, shell));
-    e.wall_particles += count_lattice_points(*owned.back(), spec, clip);
-  }
-  for (auto& s : owned) claimed.push_back(s.get());
-  for (const auto& b : c.bodies()) {
-    auto s = compile_shape(b.shape(), d, shell);
-    e.rigid_particles += count_lattice_points(Claimed(*s, claimed), spec, clip);
-    owned.push_back(std::move(s));
-  }
-  claimed.clear();
-  for (auto& s : owned) claimed.push_back(s.get());
-  // Buffers of open boundaries are fluid particles; they claim their region from the fluids.
-  std::vector<std::unique_ptr<Shape>> buffers;
+  // The regions in claiming order, and what testing each of them costs: claims are made by
+  // the kinds before a region's own (walls by none; bodies do not claim from bodies, nor
+  // fluids from fluids).
+  std::vector<Region> regions;
+  for (const auto& w : c.walls())
+    regions.push_back({compile_shape(w.shape(), d, shell), kWallRegion});
+  for (const auto& b : c.bodies())
+    regions.push_back({compile_shape(b.shape(), d, shell), kBodyRegion});
   for (const auto& o : c.open_boundaries()) {
     v1::Shape box;
     *box.mutable_box() = o.region();
-    buffers.push_back(compile_shape(box, d, shell));
-    e.fluid_particles += count_lattice_points(Claimed(*buffers.back(), claimed), spec, clip);
+    regions.push_back({compile_shape(box, d, shell), kBufferRegion});
   }
-  for (auto& b : buffers) claimed.push_back(b.get());
-  for (const auto& f : c.fluids()) {
-    auto s = compile_shape(f.shape(), d, shell);
-    e.fluid_particles += count_lattice_points(Claimed(*s, claimed), spec, clip);
+  for (const auto& f : c.fluids())
+    regions.push_back({compile_shape(f.shape(), d, shell), kFluidRegion});
+  ClaimIndex index(clip, d);
+  for (std::size_t i = 0; i < regions.size();) {
+    std::size_t end = i;
+    while (end < regions.size() && regions[end].kind == regions[i].kind) ++end;
+    for (std::size_t k = i; k < end; ++k) {
+      Region& r = regions[k];
+      r.claimed_by = index.size();
+      r.cost = r.shape->cost() +
+               (r.claimed_by > 0 ? index.max_cost(r.shape->bounds().intersected(clip)) : 0.0);
+      r.need = walk_work(Claimed(*r.shape, index, r.claimed_by, r.cost), spec, clip);
+    }
+    if (regions[i].kind != kFluidRegion)
+      for (std::size_t k = i; k < end; ++k) index.add(regions[k].shape.get());
+    i = end;
+  }
+  std::vector<double> needs;
+  for (const auto& r : regions) needs.push_back(r.need);
+  const std::vector<double> share = share_work(needs, kEstimateWork);
+  for (std::size_t k = 0; k < regions.size(); ++k) {
+    const Region& r = regions[k];
+    double n = 0;
+    if (share[k] >= r.cost + kLatticePointWork || r.need == 0) {
+      n = count_lattice_points(Claimed(*r.shape, index, r.claimed_by, r.cost), spec, clip,
+                               share[k]);
+    } else if (share[k] >= r.shape->cost() + kLatticePointWork) {
+      // Too little for the claims (a thousand regions over one huge polygon): the region alone.
+      n = count_lattice_points(*r.shape, spec, clip, share[k]);
+    } else {
+      // Not even one test: every lattice point of its bounds.
+      n = lattice_points_in(r.shape->bounds().intersected(clip), spec);
+    }
+    (r.kind == kWallRegion   ? e.wall_particles
+     : r.kind == kBodyRegion ? e.rigid_particles
+                             : e.fluid_particles) += n;
   }
 
   // Fuchs 2021 eq. (41) at rest (|u_max| = 0).

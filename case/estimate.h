@@ -20,7 +20,9 @@ struct CaseEstimate {
   std::string dt_limited_by;  // which criterion of eq. (41) is the smallest
 };
 
-// Requires a case that passed the structural checks of validate_case (shapes compile).
+// Requires a case that passed the structural checks of validate_case (shapes compile). The
+// particle counts are exact within kEstimateWork (case/case_limits.h) and counted on a sample
+// of each region's lattice points beyond it.
 CaseEstimate estimate_case(const v1::Case& c);
 
 // Cut-off radius over smoothing length for the case's kernel (kappa).

@@ -10,6 +10,18 @@ namespace {
 
 constexpr double kHuge = 1e300;
 
+// Shape::cost() of the primitives that do more than a box: a cylinder projects on its axis, a
+// polygon visits every edge, a polar curve takes an arc tangent, a sine and a cosine.
+constexpr double kCylinderCost = 2;
+constexpr double kPolygonVertexCost = 1.5;
+constexpr double kPolarCurveCost = 16;
+
+double parts_cost(const std::vector<std::unique_ptr<Shape>>& parts) {
+  double c = 1;
+  for (const auto& s : parts) c += s->cost();
+  return c;
+}
+
 class BoxShape final : public Shape {
  public:
   BoxShape(const v1::Box& b, int dim) : dim_(dim) {
@@ -27,6 +39,7 @@ class BoxShape final : public Shape {
     return d;
   }
   Aabb bounds() const override { return {lo_, hi_}; }
+  double cost() const override { return 1; }
 
  private:
   int dim_;
@@ -49,6 +62,7 @@ class BallShape final : public Shape {
     if (dim_ == 2) b.lo.z() = b.hi.z() = 0.0;
     return b;
   }
+  double cost() const override { return 1; }
 
  private:
   Point3 c_;
@@ -82,6 +96,7 @@ class CylinderShape final : public Shape {
     }
     return b;
   }
+  double cost() const override { return kCylinderCost; }
 
  private:
   Point3 base_, axis_;
@@ -116,6 +131,7 @@ class PolygonShape final : public Shape {
     for (const auto& v : v_) b.grow(Point3(v.x(), v.y(), 0.0));
     return b;
   }
+  double cost() const override { return std::max<double>(1, kPolygonVertexCost * v_.size()); }
 
  private:
   std::vector<Eigen::Vector2d> v_;
@@ -143,6 +159,7 @@ class PolarCurveShape final : public Shape {
     const double R = r_ + std::abs(a_);
     return {Point3(c_.x() - R, c_.y() - R, 0), Point3(c_.x() + R, c_.y() + R, 0)};
   }
+  double cost() const override { return kPolarCurveCost; }
 
  private:
   Eigen::Vector2d c_;
@@ -167,6 +184,7 @@ class PointSetShape final : public Shape {
     for (const auto& p : pts_) b.grow(p);
     return b;
   }
+  double cost() const override { return 1; }
   const std::vector<Point3>* explicit_points() const override { return &pts_; }
 
  private:
@@ -186,6 +204,7 @@ class UnionShape final : public Shape {
     for (const auto& s : parts_) b.grow(s->bounds());
     return b;
   }
+  double cost() const override { return parts_cost(parts_); }
 
  private:
   std::vector<std::unique_ptr<Shape>> parts_;
@@ -205,6 +224,7 @@ class IntersectionShape final : public Shape {
     for (size_t i = 1; i < parts_.size(); ++i) b = b.intersected(parts_[i]->bounds());
     return b;
   }
+  double cost() const override { return parts_cost(parts_); }
 
  private:
   std::vector<std::unique_ptr<Shape>> parts_;
@@ -220,6 +240,7 @@ class DifferenceShape final : public Shape {
     return d;
   }
   Aabb bounds() const override { return base_->bounds(); }
+  double cost() const override { return base_->cost() + parts_cost(sub_); }
 
  private:
   std::unique_ptr<Shape> base_;
@@ -235,6 +256,7 @@ class ShellShape final : public Shape {
     return std::max(-d, d - t_);
   }
   Aabb bounds() const override { return inner_->bounds().inflated(t_); }
+  double cost() const override { return 1 + inner_->cost(); }
 
  private:
   std::unique_ptr<Shape> inner_;

@@ -49,6 +49,10 @@ class Shape {
   virtual double distance(const Point3& p) const = 0;
   bool contains(const Point3& p) const { return distance(p) < 0.0; }
   virtual Aabb bounds() const = 0;
+  // The work of one distance() call, in units of a box's (at least 1): how validation and
+  // estimates budget their lattice walks (case/lattice.h). A polygon costs one unit per
+  // vertex, a combination the sum of its parts and one for itself.
+  virtual double cost() const = 0;
   // Explicit points (PointSet) replace the lattice fill for this shape.
   virtual const std::vector<Point3>* explicit_points() const { return nullptr; }
 };

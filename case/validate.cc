@@ -33,7 +33,10 @@ class Validator {
 
   std::vector<FieldError> run() {
     // The checks below recurse over shapes and do lattice arithmetic: only within the bounds.
-    if (auto bounds = check_case_bounds(c_); !bounds.empty()) return bounds;
+    if (auto bounds = check_case_bounds(c_); !bounds.empty()) {
+      for (auto& e : bounds) error(e.field, e.message);
+      return reported();
+    }
     top_level();
     if (dim_ok_) {
       materials();
@@ -45,11 +48,24 @@ class Validator {
       probes();
       size_limit();
     }
+    return reported();
+  }
+
+  std::vector<FieldError> reported() {
+    if (unreported_ > 0)
+      errors_.push_back({"", "and " + std::to_string(unreported_) + " more error" +
+                                 (unreported_ == 1 ? "" : "s") + " (only the first " +
+                                 std::to_string(kMaxReportedErrors) + " are listed)"});
     return std::move(errors_);
   }
 
  private:
-  void error(const std::string& field, const std::string& msg) { errors_.push_back({field, msg}); }
+  void error(const std::string& field, const std::string& msg) {
+    if (errors_.size() < static_cast<std::size_t>(kMaxReportedErrors))
+      errors_.push_back({field, msg});
+    else
+      ++unreported_;
+  }
 
   void positive(double v, const std::string& field, const std::string& what = "must be > 0") {
     if (!finite(v) || v <= 0) error(field, what + " (got " + num(v) + ")");
@@ -71,6 +87,12 @@ class Validator {
     if (finite(v) && std::abs(v) > kMaxCoordinate)
       error(field, "is " + count_text(v) + " m; coordinates and lengths must lie within +-" +
                        count_text(kMaxCoordinate) + " m");
+  }
+  // Whether point() finds nothing wrong; a point set of millions names only the points that
+  // are wrong, not build each one's field path.
+  bool point_ok(const v1::Vec3& v) const {
+    auto ok = [](double x) { return finite(x) && std::abs(x) <= kMaxCoordinate; };
+    return ok(v.x()) && ok(v.y()) && (c_.dimension() == 2 ? v.z() == 0.0 : ok(v.z()));
   }
   void point(const v1::Vec3& v, const std::string& field) {
     vec(v, field);
@@ -173,6 +195,7 @@ class Validator {
     }
   }
 
+  static constexpr int kMaterialsListed = 8;
   void material_ref(const std::string& name, v1::MaterialPhase want, const std::string& field,
                     bool required) {
     if (name.empty()) {
@@ -181,8 +204,18 @@ class Validator {
     }
     auto it = phase_.find(name);
     if (it == phase_.end()) {
+      // A few names are enough to spot a typo; all of them, in each of a thousand such errors,
+      // would be megabytes.
       std::string known;
-      for (const auto& n : names_) known += (known.empty() ? "" : ", ") + n;
+      int listed = 0;
+      for (const auto& n : names_) {
+        if (listed == kMaterialsListed) {
+          known += " and " + std::to_string(names_.size() - listed) + " more";
+          break;
+        }
+        known += (known.empty() ? "" : ", ") + n;
+        ++listed;
+      }
       error(field,
             "unknown material '" + name + "' (defined: " + (known.empty() ? "none" : known) + ")");
     } else if (it->second != want) {
@@ -231,7 +264,8 @@ class Validator {
         if (s.polygon().vertices_size() < 3)
           error(cat(f, "polygon.vertices"), "needs at least 3 vertices");
         for (int i = 0; i < s.polygon().vertices_size(); ++i)
-          point(s.polygon().vertices(i), idx(cat(f, "polygon.vertices"), i));
+          if (!point_ok(s.polygon().vertices(i)))
+            point(s.polygon().vertices(i), idx(cat(f, "polygon.vertices"), i));
         break;
       case v1::Shape::kPolarCurve: {
         const auto& p = s.polar_curve();
@@ -252,7 +286,8 @@ class Validator {
         else if (s.points().points_size() == 0)
           error(cat(f, "points.points"), "is empty");
         for (int i = 0; i < s.points().points_size(); ++i)
-          point(s.points().points(i), idx(cat(f, "points.points"), i));
+          if (!point_ok(s.points().points(i)))
+            point(s.points().points(i), idx(cat(f, "points.points"), i));
         break;
       case v1::Shape::kUnion:
       case v1::Shape::kIntersection: {
@@ -758,6 +793,9 @@ class Validator {
 
   // Each region must place particles, and a fluid or a body most of them inside the domain
   // (kMinRegionFractionInDomain): the scene builder drops whatever lies outside without a word.
+  // The regions share kRegionCheckWork; one counted on a sample is refused for lying outside
+  // only when the sample is large enough to tell, and never for placing no particles (a thin
+  // region can slip between the points of a sample).
   void regions_in_domain() {
     const int d = c_.dimension();
     const LatticeSpec spec{d, c_.dx(), to_point(c_.lattice_origin())};
@@ -774,35 +812,55 @@ class Validator {
       around.lo[a] -= w;
       around.hi[a] += w;
     }
-    const double shell = default_shell_thickness(c_);
-    auto region = [&](const v1::Shape& s, const std::string& kind, const std::string& name,
-                      const std::string& f) {
-      const auto shape = compile_shape(s, d, shell);
-      const double inside = count_lattice_points(*shape, spec, domain);
-      const double near = std::max(inside, count_lattice_points(*shape, spec, around));
-      const std::string what = kind + (name.empty() ? "" : " '" + name + "'");
-      const std::string points = shape->explicit_points() ? "points" : "lattice points";
-      if (inside < 1) {
-        error(f, what + " places no particles: " +
-                     (near >= 1
-                          ? "none of its " + count_text(near) + " " + points + " lies"
-                          : std::string("it has no ") + points + " (dx = " + num(c_.dx()) + ")") +
-                     " inside the domain" + domain_text() + "; the shape spans " +
-                     box_text(shape->bounds()));
-      } else if (kind != "wall" && inside < kMinRegionFractionInDomain * near) {
-        error(f, what + " lies mostly outside the domain" + domain_text() + ": " +
-                     count_text(inside) + " of its " + count_text(near) + " " + points +
-                     " are inside; at least " + count_text(100 * kMinRegionFractionInDomain) +
-                     "% must be");
-      }
+    struct Region {
+      const v1::Shape* shape;
+      std::string kind, name, field;
     };
+    std::vector<Region> regions;
     for (int i = 0; i < c_.fluids_size(); ++i)
-      region(c_.fluids(i).shape(), "fluid", c_.fluids(i).name(), cat(idx("fluids", i), "shape"));
+      regions.push_back(
+          {&c_.fluids(i).shape(), "fluid", c_.fluids(i).name(), cat(idx("fluids", i), "shape")});
     for (int i = 0; i < c_.walls_size(); ++i)
-      region(c_.walls(i).shape(), "wall", c_.walls(i).name(), cat(idx("walls", i), "shape"));
+      regions.push_back(
+          {&c_.walls(i).shape(), "wall", c_.walls(i).name(), cat(idx("walls", i), "shape")});
     for (int i = 0; i < c_.bodies_size(); ++i)
-      region(c_.bodies(i).shape(), "body", c_.bodies(i).name(), cat(idx("bodies", i), "shape"));
+      regions.push_back(
+          {&c_.bodies(i).shape(), "body", c_.bodies(i).name(), cat(idx("bodies", i), "shape")});
+    const double shell = default_shell_thickness(c_);
+    std::vector<std::unique_ptr<Shape>> shapes;
+    std::vector<double> needs;
+    for (const auto& r : regions) {
+      shapes.push_back(compile_shape(*r.shape, d, shell));
+      needs.push_back(walk_work(*shapes.back(), spec, around));
+    }
+    const std::vector<double> share = share_work(needs, kRegionCheckWork);
+    for (std::size_t k = 0; k < regions.size(); ++k) {
+      const Shape& shape = *shapes[k];
+      const Region& r = regions[k];
+      const PointCount n = count_lattice_points(shape, spec, around, domain, share[k]);
+      const double inside = n.in_core, near = n.points;
+      const std::string what = r.kind + (r.name.empty() ? "" : " '" + r.name + "'");
+      const std::string points = shape.explicit_points() ? "points" : "lattice points";
+      if (n.exact && inside < 1) {
+        error(r.field, what + " places no particles: " +
+                           (near >= 1 ? "none of its " + count_text(near) + " " + points + " lies"
+                                      : std::string("it has no ") + points +
+                                            " (dx = " + num(c_.dx()) + ")") +
+                           " inside the domain" + domain_text() + "; the shape spans " +
+                           box_text(shape.bounds()));
+      } else if (r.kind != "wall" && (n.exact || n.hits >= kMinHitsToRefuse) &&
+                 inside < kMinRegionFractionInDomain * near) {
+        const std::string about = n.exact ? "" : "about ";
+        error(r.field, what + " lies mostly outside the domain" + domain_text() + ": " + about +
+                           count_text(std::round(inside)) + " of its " + about +
+                           count_text(std::round(near)) + " " + points + " are inside" +
+                           (n.exact ? "" : " (counted on a sample)") + "; at least " +
+                           count_text(100 * kMinRegionFractionInDomain) + "% must be");
+      }
+    }
   }
+  // Points of a region a sample must have found before the region is refused on it.
+  static constexpr double kMinHitsToRefuse = 100;
   std::string domain_text() const {
     return " (" + box_text({to_point(c_.domain().lo()), to_point(c_.domain().hi())}) + ")";
   }
@@ -843,6 +901,7 @@ class Validator {
   std::map<std::string, v1::MaterialPhase> phase_;
   std::set<std::string> body_names_;
   std::set<std::string> reported_;
+  std::size_t unreported_ = 0;
   bool dim_ok_ = true;
 };
 

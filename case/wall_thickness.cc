@@ -5,7 +5,10 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "case/case_limits.h"
 #include "case/estimate.h"
 #include "case/geometry.h"
 #include "case/lattice.h"
@@ -41,35 +44,64 @@ class Occupancy {
     }
   }
   double cells() const { return cells_; }
-  void allocate() { tag_.assign(static_cast<std::size_t>(cells_), kEmpty); }
+  void allocate() {
+    tag_.assign(static_cast<std::size_t>(cells_), kEmpty);
+    stride_[0] = 1;
+    stride_[1] = n_[0];
+    stride_[2] = n_[0] * n_[1];
+  }
 
-  // Tags every lattice point of `shape` inside the domain that is still empty.
+  // Tags every lattice point of `shape` inside the domain that is still empty (a cell taken
+  // already is not tested again).
   void claim(const Shape& shape, const Aabb& clip, std::uint16_t tag) {
-    for_each_lattice_point(shape, spec_, clip, [&](const Point3& p) {
-      std::array<std::int64_t, 3> i{};
-      for (int a = 0; a < dim_; ++a)
-        i[a] = static_cast<std::int64_t>(std::llround((p[a] - spec_.origin[a]) / spec_.dx - 0.5));
-      const std::int64_t k = linear(i);
+    auto take = [&](std::int64_t k) {
       if (k >= 0 && tag_[static_cast<std::size_t>(k)] == kEmpty)
         tag_[static_cast<std::size_t>(k)] = tag;
-    });
+    };
+    if (const auto* pts = shape.explicit_points()) {
+      for (const auto& p : *pts) {
+        if (!inside_box(p, clip, dim_)) continue;
+        std::array<std::int64_t, 3> i{};
+        for (int a = 0; a < dim_; ++a)
+          i[a] = static_cast<std::int64_t>(std::llround((p[a] - spec_.origin[a]) / spec_.dx - 0.5));
+        take(linear(i));
+      }
+      return;
+    }
+    const LatticeRange r = lattice_range(shape, spec_, clip);
+    for (std::int64_t z = r.lo[2]; z <= r.hi[2]; ++z)
+      for (std::int64_t y = r.lo[1]; y <= r.hi[1]; ++y)
+        for (std::int64_t x = r.lo[0]; x <= r.hi[0]; ++x) {
+          const std::int64_t k = linear({x, y, z});
+          if (k < 0 || tag_[static_cast<std::size_t>(k)] != kEmpty) continue;
+          const Point3 p = lattice_point(spec_, x, y, z);
+          if (inside_box(p, clip, dim_) && shape.contains(p)) take(k);
+        }
   }
 
-  // Tag of the cell at lattice index i (wrapped on periodic axes; outside the domain: empty).
-  std::uint16_t at(std::array<std::int64_t, 3> i) const {
-    const std::int64_t k = linear(i);
-    return k < 0 ? std::uint16_t{kEmpty} : tag_[static_cast<std::size_t>(k)];
+  // Tag of the cell `steps` cells along axis a from the cell at lattice index i, whose place in
+  // the grid is k (wrapped on periodic axes; outside the domain: empty). Strides instead of the
+  // index from scratch: the scan looks up every neighbour of every fluid cell.
+  std::uint16_t along(const std::array<std::int64_t, 3>& i, std::int64_t k, int a,
+                      std::int64_t steps) const {
+    const std::int64_t from = i[a] - lo_[a];
+    std::int64_t r = from + steps;
+    if (r < 0 || r >= n_[a]) {
+      if (!periodic_[a]) return kEmpty;
+      r = ((r % n_[a]) + n_[a]) % n_[a];
+    }
+    return tag_[static_cast<std::size_t>(k + (r - from) * stride_[a])];
   }
 
-  // Calls fn(i) for the lattice index of every fluid cell.
+  // Calls fn(i, k) for the lattice index i and grid place k of every fluid cell.
   template <class Fn>
   void for_each_fluid(Fn&& fn) const {
-    std::size_t k = 0;
+    std::int64_t k = 0;
     for (std::int64_t z = 0; z < n_[2]; ++z)
       for (std::int64_t y = 0; y < n_[1]; ++y)
         for (std::int64_t x = 0; x < n_[0]; ++x, ++k)
-          if (tag_[k] == kFluid)
-            fn(std::array<std::int64_t, 3>{lo_[0] + x, lo_[1] + y, lo_[2] + z});
+          if (tag_[static_cast<std::size_t>(k)] == kFluid)
+            fn(std::array<std::int64_t, 3>{lo_[0] + x, lo_[1] + y, lo_[2] + z}, k);
   }
 
   Point3 position(const std::array<std::int64_t, 3>& i) const {
@@ -84,7 +116,7 @@ class Occupancy {
     std::int64_t k = 0, stride = 1;
     for (int a = 0; a < 3; ++a) {
       std::int64_t r = i[a] - lo_[a];
-      if (periodic_[a] && n_[a] > 0) r = ((r % n_[a]) + n_[a]) % n_[a];
+      if (periodic_[a] && n_[a] > 0 && (r < 0 || r >= n_[a])) r = ((r % n_[a]) + n_[a]) % n_[a];
       if (r < 0 || r >= n_[a]) return -1;
       k += r * stride;
       stride *= n_[a];
@@ -94,11 +126,15 @@ class Occupancy {
 
   LatticeSpec spec_;
   int dim_;
-  std::int64_t lo_[3] = {0, 0, 0}, n_[3] = {1, 1, 1};
+  std::int64_t lo_[3] = {0, 0, 0}, n_[3] = {1, 1, 1}, stride_[3] = {1, 1, 1};
   bool periodic_[3] = {false, false, false};
   double cells_ = 0;
   std::vector<std::uint16_t> tag_;
 };
+
+// The scan's work per cell and axis, in units of Shape::cost(): a fluid cell looks at its two
+// neighbours along each axis.
+constexpr double kScanWorkPerCell = 2;
 
 // The first place a wall was found too thin, and how often.
 struct Finding {
@@ -129,41 +165,49 @@ std::vector<FieldError> check_wall_thickness(const v1::Case& c) {
 
   const LatticeSpec spec{dim, dx, to_point(c.lattice_origin())};
   Occupancy occ(c, spec);
-  if (occ.cells() > kWallCheckMaxCells || occ.cells() < 1) return errors;
-  occ.allocate();
+  if (occ.cells() < 1) return errors;
   Aabb clip{to_point(c.domain().lo()), to_point(c.domain().hi())};
   if (dim == 2) clip.lo.z() = clip.hi.z() = 0.0;
   const double shell = default_shell_thickness(c);
+  // The claiming order of the scene builder: walls, bodies, open-boundary buffers, fluids.
+  std::vector<std::pair<std::unique_ptr<Shape>, std::uint16_t>> claims;
   for (int k = 0; k < c.walls_size(); ++k)
-    occ.claim(*compile_shape(c.walls(k).shape(), dim, shell), clip,
-              static_cast<std::uint16_t>(kWall + k));
-  for (const auto& b : c.bodies()) occ.claim(*compile_shape(b.shape(), dim, shell), clip, kBody);
+    claims.emplace_back(compile_shape(c.walls(k).shape(), dim, shell),
+                        static_cast<std::uint16_t>(kWall + k));
+  for (const auto& b : c.bodies()) claims.emplace_back(compile_shape(b.shape(), dim, shell), kBody);
   for (const auto& o : c.open_boundaries()) {
     v1::Shape box;
     *box.mutable_box() = o.region();
-    occ.claim(*compile_shape(box, dim, shell), clip, kFluid);
+    claims.emplace_back(compile_shape(box, dim, shell), kFluid);
   }
-  for (const auto& f : c.fluids()) occ.claim(*compile_shape(f.shape(), dim, shell), clip, kFluid);
+  for (const auto& f : c.fluids())
+    claims.emplace_back(compile_shape(f.shape(), dim, shell), kFluid);
+  // Every cell is tagged exactly, so the check cannot sample: it runs within kWallCheckWork or
+  // not at all.
+  double work = occ.cells() * kScanWorkPerCell * dim;
+  for (const auto& [shape, tag] : claims) work += walk_work(*shape, spec, clip);
+  if (work > kWallCheckWork) return errors;
+  charge_lattice_work(work);
+  occ.allocate();
+  for (const auto& [shape, tag] : claims) occ.claim(*shape, clip, tag);
 
   std::vector<Finding> found(static_cast<std::size_t>(c.walls_size()));
-  occ.for_each_fluid([&](const std::array<std::int64_t, 3>& f) {
+  occ.for_each_fluid([&](const std::array<std::int64_t, 3>& f, std::int64_t k) {
     for (int a = 0; a < dim; ++a)
       for (int sign = -1; sign <= 1; sign += 2) {
-        auto q = f;
-        q[a] += sign;
-        const std::uint16_t first = occ.at(q);
+        const std::uint16_t first = occ.along(f, k, a, sign);
         if (first < kWall) continue;
         int layers = 1;
         for (int n = 2; n <= needed; ++n) {
-          q[a] += sign;
-          const std::uint16_t t = occ.at(q);
+          const std::uint16_t t = occ.along(f, k, a, sign * n);
           if (t == kEmpty || t == kFluid) {
             Finding& g = found[first - kWall];
             if (g.count++ == 0) {
               g.layers = layers;
               g.through = t == kFluid;
               g.at = f;
-              g.behind = q;
+              g.behind = f;
+              g.behind[a] += sign * n;
               g.axis = a;
               g.sign = sign;
             }

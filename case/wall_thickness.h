@@ -17,12 +17,10 @@
 
 namespace sph {
 
-// Lattice cells of the domain above which the check is skipped (its occupancy grid holds two
-// bytes per cell).
-inline constexpr double kWallCheckMaxCells = 3e7;
-
 // One error per wall that is too thin somewhere (field "walls[k].shape"). Expects a case whose
-// shapes are valid.
+// shapes are valid. It tags every lattice cell of the domain (two bytes each) by every region
+// that covers it, so a case that needs more work than kWallCheckWork (case/case_limits.h) is
+// not checked: no errors.
 std::vector<FieldError> check_wall_thickness(const v1::Case& c);
 
 }  // namespace sph
