@@ -1,5 +1,7 @@
 #include "server/api/fetch_result_reactor.h"
 
+#include <algorithm>
+
 #include "server/api/errors.h"
 #include "server/common/job_state.h"
 #include "server/common/time_text.h"
@@ -87,7 +89,9 @@ std::optional<grpc::Status> FetchResultReactor::prepare_next() {
           grpc::StatusCode::UNAVAILABLE,
           "server shutting down; resume " + f.name() + " at offset " + std::to_string(offset_));
     std::string& data = *chunk_.mutable_data();
-    data.resize(kChunkBytes);
+    // Never past the size the manifest gave: a file that grew since is served as listed.
+    data.resize(static_cast<std::size_t>(
+        std::min<std::int64_t>(static_cast<std::int64_t>(kChunkBytes), size_ - offset_)));
     in_.read(data.data(), static_cast<std::streamsize>(data.size()));
     data.resize(static_cast<std::size_t>(in_.gcount()));
     // Shorter than its size said when it was opened: removed or cut while it was sent.

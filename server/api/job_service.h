@@ -3,7 +3,9 @@
 #include <mutex>
 
 #include "server/api/auth.h"
+#include "server/api/job_service_limits.h"
 #include "server/api/stream_limiter.h"
+#include "server/api/submission.h"
 #include "server/api/work_queue.h"
 #include "server/events/event_feed.h"
 #include "server/results/result_layout.h"
@@ -12,28 +14,25 @@
 
 namespace sph::server::api {
 
-// What one submit and all unfinished jobs together may ask for (server/config.h).
-struct JobServiceLimits {
-  double max_particles = 0;         // per case, 0 = no limit
-  double max_memory_bytes = 0;      // per case (estimate_case().bytes), 0 = no limit
-  double max_queued_jobs = 0;       // queued + running jobs, 0 = no limit
-  double max_queued_particles = 0;  // their estimated particles, 0 = no limit
-  int max_streams_per_client = 256;
-};
-
 // WatchJob and FetchResult are callback (reactor) methods, so that an open stream costs
-// memory and no thread; the other methods are synchronous.
-using JobServiceBase = v1::JobService::WithCallbackMethod_WatchJob<
-    v1::JobService::WithCallbackMethod_FetchResult<v1::JobService::Service>>;
+// memory and no thread, and so is Submit, whose work runs on a fixed pool; the other methods
+// are synchronous.
+using JobServiceBase =
+    v1::JobService::WithCallbackMethod_Submit<v1::JobService::WithCallbackMethod_WatchJob<
+        v1::JobService::WithCallbackMethod_FetchResult<v1::JobService::Service>>>;
 
 class JobServiceImpl final : public JobServiceBase {
  public:
+  static constexpr int kSubmitThreads = 8;
+
   JobServiceImpl(store::JobStore& store, EventFeed& feed, const ResultLayout& layout,
                  const TokenCheck& auth, JobServiceLimits limits)
       : store_(store), feed_(feed), layout_(layout), auth_(auth), limits_(limits) {}
 
-  grpc::Status Submit(grpc::ServerContext* context, const v1::SubmitRequest* request,
-                      v1::SubmitResponse* response) override;
+  using JobServiceBase::Submit;  // the synchronous form, which the mixin disables
+  grpc::ServerUnaryReactor* Submit(grpc::CallbackServerContext* context,
+                                   const v1::SubmitRequest* request,
+                                   v1::SubmitResponse* response) override;
   grpc::Status GetJob(grpc::ServerContext* context, const v1::GetJobRequest* request,
                       v1::Job* response) override;
   grpc::Status ListJobs(grpc::ServerContext* context, const v1::ListJobsRequest* request,
@@ -62,6 +61,11 @@ class JobServiceImpl final : public JobServiceBase {
   // for watches the event feed wakes.
   StreamLimiter streams_{limits_.max_streams_per_client};
   WorkQueue stream_work_{2};
+  // Submits in arrival order; more threads than cores so that commits group (a thread waits
+  // for its batch's fsync while the others validate the next requests). Declared last: it is
+  // destroyed (joined) first, while what its tasks use still exists.
+  Submission submission_{store_, auth_, limits_};
+  WorkQueue submit_work_{kSubmitThreads};
 };
 
 }  // namespace sph::server::api

@@ -6,7 +6,7 @@
 
 namespace sph::server::api {
 
-StreamClient stream_client(std::string_view peer, std::string_view authorization) {
+StreamClient stream_client(std::string_view peer) {
   std::string host(peer);
   const auto colon = peer.find(':');
   const std::string_view scheme = peer.substr(0, colon);
@@ -22,19 +22,11 @@ StreamClient stream_client(std::string_view peer, std::string_view authorization
       host = std::string(address.substr(open.size(), end - open.size()));
   }
   std::string key = host;
-  if (!authorization.empty()) {
-    key += '\n';
-    key += authorization;
-  }
   return {std::move(key), std::move(host)};
 }
 
 StreamClient stream_client(const grpc::ServerContextBase& context) {
-  const auto& md = context.client_metadata();
-  const auto it = md.find(service::kAuthorizationKey);
-  return stream_client(
-      context.peer(),
-      it == md.end() ? std::string_view() : std::string_view(it->second.data(), it->second.size()));
+  return stream_client(context.peer());
 }
 
 StreamLimiter::Slot::Slot(Slot&& other) noexcept

@@ -12,16 +12,17 @@
 
 namespace sph::server::api {
 
-// A client is the peer's host (without the port, so that all of a host's connections count
-// together) and the bearer token it presents (users behind one address with tokens of their
-// own are counted apart).
+// A client is the peer's host, without the port, so that all of a host's connections count
+// together. Not the token: without --token-file any token is accepted, so a token in the key
+// would let one host open a new set of streams per made-up token; with one, every caller
+// presents the same token.
 struct StreamClient {
   std::string key;
-  std::string host;  // for messages; the token is never shown
+  std::string host;  // for messages
 };
 // `peer` as grpc::ServerContextBase::peer() gives it ("ipv4:127.0.0.1:5555",
-// "ipv6:[::1]:5555", "unix:/path"); `authorization` the metadata value or empty.
-StreamClient stream_client(std::string_view peer, std::string_view authorization);
+// "ipv6:[::1]:5555", "unix:/path").
+StreamClient stream_client(std::string_view peer);
 StreamClient stream_client(const grpc::ServerContextBase& context);
 
 class StreamLimiter {

@@ -27,7 +27,13 @@ WatchJobReactor::WatchJobReactor(store::JobStore& store, EventFeed& feed, WorkQu
   // Listening comes before the first read, so that an event committed in between still
   // wakes the stream.
   listen_key_ = feed_.listen(job_, [this] { wake(); });
-  pump();
+  try {
+    pump();
+  } catch (...) {
+    // gRPC frees a reactor whose constructor throws; the feed must not keep calling it.
+    feed_.unlisten(listen_key_);
+    throw;
+  }
 }
 
 void WatchJobReactor::pump() {

@@ -76,9 +76,11 @@ class GroupCommit {
  private:
   // Called with the lock held and no leader; returns with the lock held.
   void lead(std::unique_lock<std::mutex>& lock) {
-    leading_ = true;
+    // The batch is taken before this thread becomes the leader: if taking it throws, no one
+    // is left leading a batch that never ends.
     const std::size_t n = std::min(queue_.size(), max_batch_);
     std::vector<Entry*> batch(queue_.begin(), queue_.begin() + static_cast<std::ptrdiff_t>(n));
+    leading_ = true;
     queue_.erase(queue_.begin(), queue_.begin() + static_cast<std::ptrdiff_t>(n));
     committing_ = n;
     lock.unlock();
