@@ -6,7 +6,9 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -333,6 +335,22 @@ TEST(CaseLimits, EveryNumberMustBeFinite) {
     EXPECT_TRUE(has_error(errs, p.field, "every number must be finite")) << join_errors(errs);
   }
   EXPECT_TRUE(validate_case(parse_case_text(base)).empty());
+
+  // Points are checked in place and named only when one is wrong; a million bad ones give
+  // a hundred lines and a note, not a million.
+  v1::Case many = parse_case_text(base);
+  auto* points = many.mutable_fluids(0)->mutable_shape()->mutable_points();
+  for (int i = 0; i < 1000000; ++i) {
+    auto* p = points->add_points();
+    p->set_x(i == 4 ? std::nan("") : 0.5 + 1e-6 * (i % 1000));
+    p->set_y(i >= 900000 ? std::numeric_limits<double>::infinity() : 0.5);
+  }
+  const auto bounds = check_case_bounds(many);
+  std::printf("1e6 points, 100001 not finite: %zu errors, first '%s'\n", bounds.size(),
+              bounds.front().to_string().c_str());
+  EXPECT_EQ(bounds.front().field, "fluids[0].shape.points.points[4].x");
+  EXPECT_EQ(bounds.size(), 101u);
+  EXPECT_NE(bounds.back().message.find("only the first 100"), std::string::npos);
 }
 
 // Before: estimated 406 particles and ran with 6.
