@@ -271,6 +271,37 @@ TEST(ServiceHardening, StoredCaseTextIsBoundedByWhatWasSent) {
   EXPECT_EQ(h.submit_text(text, job.request_id()).id(), job.id());
 }
 
+TEST(ServiceHardening, QueueLimitsRefuseWithTheNumbersAndStoreNothing) {
+  ServiceHarness h;
+  h.start_server(ServerSettings().flag("--max-queued-jobs", "2"));
+  const v1::Job first = h.submit_text(small_case(), "q-1");
+  h.submit_text(small_case(), "q-2");
+  v1::SubmitRequest req;
+  req.set_request_id("q-3");
+  req.set_case_text(small_case());
+  v1::SubmitResponse resp;
+  const auto full = h.jobs().Submit(h.context().get(), req, &resp);
+  std::printf("third submit: %d %s\n", static_cast<int>(full.error_code()),
+              full.error_message().c_str());
+  EXPECT_EQ(full.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(full.error_message().find("2 jobs are queued or running; the limit is 2 "
+                                      "(--max-queued-jobs)"),
+            std::string::npos)
+      << full.error_message();
+  // A retry of a stored submit is still answered, and nothing of the refused one is stored.
+  EXPECT_EQ(h.submit_text(small_case(), "q-1").id(), first.id());
+  v1::GetJobRequest get;
+  get.set_job_id("job-3");
+  v1::Job job;
+  EXPECT_EQ(h.jobs().GetJob(h.context().get(), get, &job).error_code(),
+            grpc::StatusCode::NOT_FOUND);
+  // A finished job leaves the queue: the next submit is taken.
+  v1::CancelJobRequest cancel;
+  cancel.set_job_id(first.id());
+  ASSERT_TRUE(h.jobs().CancelJob(h.context().get(), cancel, &job).ok());
+  EXPECT_EQ(h.submit_text(small_case(), "q-3").id(), "job-3");
+}
+
 TEST(ServiceHardening, ListingWorksWhateverTheStoredJobsHold) {
   // Jobs stored before names were bounded: ten with a 10 MiB name each, written into the
   // database beside the running server (as an older server would have stored them).

@@ -88,6 +88,7 @@ void ServiceHarness::start_server(const ServerSettings& settings) {
     argv.insert(argv.end(), {"--max-particles", std::to_string(settings_.max_particles)});
   if (settings_.shutdown_grace >= 0)
     argv.insert(argv.end(), {"--shutdown-grace", std::to_string(settings_.shutdown_grace)});
+  argv.insert(argv.end(), settings_.extra_args.begin(), settings_.extra_args.end());
   const std::string log = dir_ + "/server" + std::to_string(++server_starts_) + ".log";
   log_files_.push_back(log);
   server_ = Process::spawn(argv, log);

@@ -19,9 +19,10 @@ using namespace std::chrono_literals;
 
 struct ServerSettings {
   double lease_seconds = 3;
-  std::string token;           // non-empty: written to a file and passed as --token-file
-  double max_particles = -1;   // < 0: the server's default
-  double shutdown_grace = -1;  // < 0: the server's default
+  std::string token;                    // non-empty: written to a file and passed as --token-file
+  double max_particles = -1;            // < 0: the server's default
+  double shutdown_grace = -1;           // < 0: the server's default
+  std::vector<std::string> extra_args;  // more sph-server flags
 
   ServerSettings& lease(double seconds) {
     lease_seconds = seconds;
@@ -37,6 +38,10 @@ struct ServerSettings {
   }
   ServerSettings& particle_limit(double n) {
     max_particles = n;
+    return *this;
+  }
+  ServerSettings& flag(const std::string& name, const std::string& value) {
+    extra_args.insert(extra_args.end(), {name, value});
     return *this;
   }
 };
