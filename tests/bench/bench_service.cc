@@ -421,7 +421,9 @@ int main(int argc, char** argv) {
               fs::temp_directory_path().c_str());
   Process server = Process::spawn(
       with_words({o.server, "--address", "127.0.0.1:0", "--address-file", dir + "/address", "--db",
-                  dir + "/bench.db", "--results", dir + "/results", "--lease", "60"},
+                  dir + "/bench.db", "--results", dir + "/results", "--lease", "60",
+                  // Every watcher is this one process: the per-client cap must hold them all.
+                  "--max-streams-per-client", std::to_string(std::max(256, o.watchers + 16))},
                  o.server_args),
       dir + "/server.log");
   if (!sph::testing::eventually(20s, [&] { return fs::exists(dir + "/address"); })) {
