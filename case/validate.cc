@@ -29,7 +29,8 @@ bool finite(double v) {
 
 class Validator {
  public:
-  Validator(const v1::Case& c, const ValidationLimits& limits) : c_(c), limits_(limits) {}
+  Validator(const v1::Case& c, const ValidationLimits& limits, CaseEstimate* estimate)
+      : c_(c), limits_(limits), estimate_(estimate) {}
 
   std::vector<FieldError> run() {
     // The checks below recurse over shapes and do lattice arithmetic: only within the bounds.
@@ -878,6 +879,7 @@ class Validator {
     regions_in_domain();
     if (!errors_.empty()) return;
     const CaseEstimate e = estimate_case(c_);
+    if (estimate_ != nullptr) *estimate_ = e;
     if (e.total() < 1)
       error("fluids", "the case places no particles (check shapes against domain and dx)");
     if (limits_.max_particles > 0 && e.total() > limits_.max_particles)
@@ -896,6 +898,7 @@ class Validator {
 
   const v1::Case& c_;
   ValidationLimits limits_;
+  CaseEstimate* estimate_;
   std::vector<FieldError> errors_;
   std::set<std::string> names_;
   std::map<std::string, v1::MaterialPhase> phase_;
@@ -907,8 +910,9 @@ class Validator {
 
 }  // namespace
 
-std::vector<FieldError> validate_case(const v1::Case& c, const ValidationLimits& limits) {
-  return Validator(c, limits).run();
+std::vector<FieldError> validate_case(const v1::Case& c, const ValidationLimits& limits,
+                                      CaseEstimate* estimate) {
+  return Validator(c, limits, estimate).run();
 }
 
 std::string join_errors(const std::vector<FieldError>& errors) {

@@ -24,7 +24,12 @@ struct ValidationLimits {
   std::string source = "this server's";  // "this server's limit is 2e7 (--max-particles)"
 };
 
-std::vector<FieldError> validate_case(const v1::Case& c, const ValidationLimits& limits = {});
+struct CaseEstimate;  // case/estimate.h
+
+// With `estimate`, a valid case's estimate_case() is left there (validation computes it for
+// the limits; the server would otherwise compute it twice per submit).
+std::vector<FieldError> validate_case(const v1::Case& c, const ValidationLimits& limits = {},
+                                      CaseEstimate* estimate = nullptr);
 
 // All errors joined with "; " (empty when valid).
 std::string join_errors(const std::vector<FieldError>& errors);

@@ -49,8 +49,9 @@ grpc::Status accept_submission(const Submission& s, grpc::ServerContextBase& con
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
                           std::string("invalid case: case_text: ") + e.what());
     }
-    const auto errors =
-        validate_case(c, ValidationLimits{s.limits.max_particles, s.limits.max_memory_bytes});
+    CaseEstimate estimate;
+    const auto errors = validate_case(
+        c, ValidationLimits{s.limits.max_particles, s.limits.max_memory_bytes}, &estimate);
     if (!errors.empty()) {
       for (const auto& e : errors)
         context.AddTrailingMetadata("sph-invalid-field", e.field.empty() ? "." : e.field);
@@ -81,7 +82,7 @@ grpc::Status accept_submission(const Submission& s, grpc::ServerContextBase& con
                            " MiB, so that a worker can receive it: make point sets coarser or "
                            "split the case");
     }
-    job.estimated_particles = estimate_case(c).total();
+    job.estimated_particles = estimate.total();
     service::Sha256 h;
     h.update(job.case_text);
     if (request.has_study()) {

@@ -88,8 +88,8 @@ void set_scalar(Message& m, const FieldDescriptor* f, int index, std::mt19937_64
       break;
     }
     case FieldDescriptor::CPPTYPE_FLOAT: {
-      const auto v = static_cast<float>(
-          edge_double(rng, rep ? r->GetRepeatedFloat(m, f, index) : r->GetFloat(m, f)));
+      const auto v = static_cast<float>(edge_double(
+          rng, static_cast<double>(rep ? r->GetRepeatedFloat(m, f, index) : r->GetFloat(m, f))));
       rep ? r->SetRepeatedFloat(&m, f, index, v) : r->SetFloat(&m, f, v);
       break;
     }

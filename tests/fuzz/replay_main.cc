@@ -21,6 +21,10 @@ int main(int argc, char** argv) {
   std::vector<fs::path> inputs;
   for (int i = 1; i < argc; ++i) {
     const fs::path p(argv[i]);
+    if (!fs::exists(p)) {
+      std::fprintf(stderr, "%s: no such file or folder\n", p.c_str());
+      return 1;
+    }
     if (fs::is_directory(p)) {
       for (const auto& e : fs::recursive_directory_iterator(p))
         if (e.is_regular_file()) inputs.push_back(e.path());

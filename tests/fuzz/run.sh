@@ -23,9 +23,11 @@ for target in case_text rpc; do
   corpus=$build/corpus/$target
   findings=$build/findings/$target
   mkdir -p "$corpus" "$findings"
-  seeds=("$root/tests/fuzz/corpus/$target" "$root/tests/fuzz/regressions/$target")
+  seeds=()
+  dirs=("$root/tests/fuzz/corpus/$target" "$root/tests/fuzz/regressions/$target")
   # Every shipped case is a seed of the case-text target.
-  [ "$target" = case_text ] && seeds+=("$root/cases" "$root/tests/service/cases")
+  [ "$target" = case_text ] && dirs+=("$root/cases" "$root/tests/service/cases")
+  for d in "${dirs[@]}"; do [ -d "$d" ] && seeds+=("$d"); done
   echo "fuzzing $target for $seconds s"
   if "$build/tests/fuzz/${target}_fuzzer" -max_total_time="$seconds" -timeout=30 \
       -rss_limit_mb=4096 -max_len=65536 -print_final_stats=1 -artifact_prefix="$findings/" \
