@@ -5,11 +5,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,6 +18,7 @@
 #include "case/estimate.h"
 #include "case/load.h"
 #include "case/validate.h"
+#include "tests/support/field_errors.h"
 
 namespace sph {
 namespace {
@@ -50,12 +51,7 @@ std::string replace(std::string s, const std::string& from, const std::string& t
   return s;
 }
 
-bool has_error(const std::vector<FieldError>& errs, const std::string& field,
-               const std::string& what) {
-  for (const auto& e : errs)
-    if (e.field == field && e.message.find(what) != std::string::npos) return true;
-  return false;
-}
+using testing::has_error;
 
 // The message of the CaseLoadError `fn` throws ("" and a test failure if none).
 template <class Fn>

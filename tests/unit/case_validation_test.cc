@@ -8,6 +8,7 @@
 #include "case/estimate.h"
 #include "case/load.h"
 #include "case/validate.h"
+#include "tests/support/field_errors.h"
 
 namespace sph {
 namespace {
@@ -26,13 +27,7 @@ std::vector<FieldError> errors_of(const std::string& extra, ValidationLimits lim
   return validate_case(parse_case_text(std::string(kBase) + extra), lim);
 }
 
-// True if some error has exactly this field and a message containing `what`.
-bool has_error(const std::vector<FieldError>& errs, const std::string& field,
-               const std::string& what) {
-  for (const auto& e : errs)
-    if (e.field == field && e.message.find(what) != std::string::npos) return true;
-  return false;
-}
+using testing::has_error;
 
 std::string dump(const std::vector<FieldError>& errs) {
   return join_errors(errs);

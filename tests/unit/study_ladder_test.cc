@@ -10,6 +10,7 @@
 #include "case/study_ladder.h"
 #include "case/study_spec_text.h"
 #include "case/validate.h"
+#include "tests/support/field_errors.h"
 
 namespace sph {
 namespace {
@@ -42,12 +43,7 @@ v1::StudySpec refine(int n, double ratio = 0) {
   return s;
 }
 
-bool has_error(const std::vector<FieldError>& errs, const std::string& field,
-               const std::string& what) {
-  for (const auto& e : errs)
-    if (e.field == field && e.message.find(what) != std::string::npos) return true;
-  return false;
-}
+using testing::has_error;
 
 TEST(StudyLadder, RefineDividesByTheRatioFromTheCasesDx) {
   const auto c = strip(kConduction);
