@@ -20,6 +20,7 @@
 #include "server/common/log.h"
 #include "server/common/message_limits.h"
 #include "server/common/sha256.h"
+#include "server/common/shortened_text.h"
 #include "server/common/time_text.h"
 #include "server/results/job_files_removal.h"
 #include "server/store/job_ids.h"
@@ -42,17 +43,8 @@ grpc::Status parse_id(const std::string& text, std::int64_t& id) {
 // Jobs stored before names and reasons were bounded may carry megabytes of either; a listing
 // shows their beginning (GetJob still shows them whole).
 void shorten_for_listing(v1::Job& j) {
-  const auto shorten = [](std::string& text) {
-    if (text.size() > service::kMaxListedTextBytes) {
-      // Cut at a character boundary: a proto3 string must stay valid UTF-8.
-      std::size_t end = service::kMaxListedTextBytes;
-      while (end > 0 && (static_cast<unsigned char>(text[end]) & 0xC0) == 0x80) --end;
-      text.resize(end);
-      text += "...";
-    }
-  };
-  shorten(*j.mutable_name());
-  shorten(*j.mutable_reason());
+  service::shorten_text(*j.mutable_name(), service::kMaxListedTextBytes);
+  service::shorten_text(*j.mutable_reason(), service::kMaxListedTextBytes);
 }
 
 }  // namespace

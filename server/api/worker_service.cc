@@ -9,6 +9,7 @@
 #include "server/common/job_state.h"
 #include "server/common/log.h"
 #include "server/common/message_limits.h"
+#include "server/common/shortened_text.h"
 #include "server/store/job_ids.h"
 
 namespace sph::server::api {
@@ -140,7 +141,11 @@ grpc::Status WorkerServiceImpl::Finish(grpc::ServerContext* context,
       std::error_code ec;
       const auto size = std::filesystem::file_size(
           layout_.attempt_dir(job.id(), request->attempt()) / f.name(), ec);
-      if (ec || static_cast<std::int64_t>(size) != f.size())
+      if (ec)
+        return invalid_argument(field + ".name", "'" + f.name() + "' cannot be read in attempt " +
+                                                     std::to_string(request->attempt()) +
+                                                     "'s folder");
+      if (static_cast<std::int64_t>(size) != f.size())
         return invalid_argument(field + ".size", std::to_string(f.size()) +
                                                      " does not match the file on disk (" +
                                                      std::to_string(size) + " bytes)");
@@ -153,11 +158,7 @@ grpc::Status WorkerServiceImpl::Finish(grpc::ServerContext* context,
     v1::FinishRequest shortened;
     if (request->message().size() > service::kMaxFinishMessageBytes) {
       shortened = *request;
-      std::size_t end = service::kMaxFinishMessageBytes;
-      while (end > 0 && (static_cast<unsigned char>(shortened.message()[end]) & 0xC0) == 0x80)
-        --end;
-      shortened.mutable_message()->resize(end);
-      *shortened.mutable_message() += "...";
+      service::shorten_text(*shortened.mutable_message(), service::kMaxFinishMessageBytes);
       finish = &shortened;
     }
     const v1::JobState state = store_.finish(*finish, now_unix_ms());
