@@ -188,7 +188,9 @@ TEST(ServiceEndToEnd, ACutOffPoolKeepsTheCheckpointTheServerKnowsOf) {
   ServiceHarness h;
   h.start_server(ServerSettings().lease(3));
   auto pool = h.start_pool(2, {"--checkpoint-interval", "0.2", "--max-jobs", "1"});
-  const auto job = h.submit_text(channel(12));
+  // Long enough to be still running when the server is back: on an idle machine a 12 s
+  // channel finished (2.8 s of wall time) before that, and its pool never pruned.
+  const auto job = h.submit_text(channel(40));
   ASSERT_TRUE(h.wait_for_job(job.id(), 60s, [](const v1::Job& j) {
     return j.has_checkpoint() && j.checkpoint().step() > 0;
   })) << h.logs();
