@@ -31,7 +31,7 @@
 
 #include "solver/bodies/body_regrouping.h"
 #include "solver/bodies/rigid_bodies.h"
-#include "solver/io/checkpoint_state.h"
+#include "solver/core/checkpoint_state.h"
 
 namespace sph {
 

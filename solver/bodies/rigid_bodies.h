@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "solver/bodies/rigid_body.h"
+#include "solver/core/checkpoint_state.h"
 #include "solver/core/neighbor_list.h"
 #include "solver/core/particle_store.h"
-#include "solver/io/checkpoint_state.h"
 #include "solver/parallel/exact_sum.h"
 #include "sph/v1/case.pb.h"
 

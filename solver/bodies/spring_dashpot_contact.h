@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "solver/bodies/rigid_bodies.h"
-#include "solver/io/checkpoint_state.h"
+#include "solver/core/checkpoint_state.h"
 #include "solver/parallel/halo.h"
 
 namespace sph {

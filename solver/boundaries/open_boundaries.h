@@ -56,9 +56,9 @@
 #include "solver/bodies/rigid_bodies.h"
 #include "solver/boundaries/open_boundary_zone.h"
 #include "solver/boundaries/particle_ledger.h"
+#include "solver/core/cell_grid.h"
+#include "solver/core/checkpoint_state.h"
 #include "solver/core/neighbor_list.h"
-#include "solver/io/checkpoint_state.h"
-#include "solver/parallel/cell_grid.h"
 #include "solver/parallel/comm.h"
 #include "solver/physics/fluid_table.h"
 

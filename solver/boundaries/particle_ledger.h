@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/checkpoint_state.h"
 #include "solver/core/particle_store.h"
-#include "solver/io/checkpoint_state.h"
 #include "solver/parallel/comm.h"
 
 namespace sph {

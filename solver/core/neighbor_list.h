@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "solver/core/cell_grid.h"
 #include "solver/core/particle_store.h"
-#include "solver/parallel/cell_grid.h"
 
 namespace sph {
 

@@ -8,8 +8,8 @@
 #include <map>
 #include <string>
 
+#include "solver/core/checkpoint_state.h"
 #include "solver/core/particle_store.h"
-#include "solver/io/checkpoint_state.h"
 #include "solver/parallel/comm.h"
 
 namespace sph {

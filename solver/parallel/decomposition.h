@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "solver/parallel/cell_grid.h"
+#include "solver/core/cell_grid.h"
 
 namespace sph {
 

@@ -177,7 +177,7 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
         grad_sum += in.wall_volume * gradW;
       }
     }
-    s.a[i] = acc / mi + acc_av + in.body;
+    s.a[i] += acc / mi + acc_av + in.body;  // forces accumulate (solver/seam/unit.h)
     if constexpr (kTransport) {
       Vec<D> bg = (fi.pb / mi) * acc_bg;
       const double g2 = grad_sum.squaredNorm();

@@ -50,6 +50,7 @@
 #include "solver/run/code_version.h"
 #include "solver/run/output_schedule.h"
 #include "solver/run/run_case.h"
+#include "solver/run/unit_set.h"
 #include "solver/scene/scene_builder.h"
 
 namespace sph {
@@ -127,8 +128,10 @@ class Simulation {
   void search_candidates();
   ContactQuery contact_query() const;  // of the bodies now (empty without contact)
   void compute_density_and_pressure(double dt);
-  void apply_wall_condition();
-  void compute_forces();
+  void apply_wall_condition();  // the wall values (when there are walls), then kWallState
+  void apply_wall_values();
+  void compute_forces();  // a^{n+1} cleared, the fluid forces, then the kForces units
+  void compute_fluid_forces();
   void move_bodies(double dt);
   void migrate();
   void build_transport_units();
@@ -211,6 +214,17 @@ class Simulation {
   Column<Vec<D>>* background_ = nullptr;  // a~
   Column<std::uint8_t>* free_slip_ = nullptr;
   std::vector<std::string> units_;
+  UnitSet<D> unit_set_;  // the units on the seam (solver/seam/unit.h), wired in unit_set.cc
+  void build_seam_units();
+  StepContext<D> context(double dt) {
+    return StepContext<D>{s_, nl_, pk_, halo_, comm_, t_, dt, step_};
+  }
+  double step_dt_ = 0;  // length of the step being taken (0 while priming)
+  void run_phase(StepPhase phase) {
+    if (unit_set_.empty()) return;
+    StepContext<D> ctx = context(step_dt_);
+    unit_set_.run(phase, ctx, timers_);
+  }
   std::optional<TimeStepBound> bound_;
   bool fluid_gravity_ = true;
 

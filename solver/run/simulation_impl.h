@@ -180,6 +180,7 @@ void Simulation<D, K>::build_units() {
   build_transport_units();
   build_phase_transitions();
   build_open_boundaries();
+  build_seam_units();
   if (c_.probes_size() > 0) {
     std::vector<ProbeSet<D>> sets;
     for (const auto& p : c_.probes()) {
@@ -241,6 +242,26 @@ void Simulation<D, K>::build_units() {
       result_.add_series("probes/" + set.name + "/density", {n});
       result_.add_series("probes/" + set.name + "/velocity", {n, static_cast<std::uint64_t>(D)});
     }
+}
+
+template <int D, class K>
+void Simulation<D, K>::build_seam_units() {
+  const UnitBuildContext<D> b{c_,
+                              mats_,
+                              fluids_,
+                              s_,
+                              dx_,
+                              h_,
+                              wall_volume_,
+                              kernel_.W(0.0),
+                              c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0,
+                              wall_index_};
+  unit_set_ = UnitSet<D>(make_units<D>(b));
+  for (const auto& u : unit_set_.units()) {
+    units_.push_back(u->name());
+    u->declare_output(result_);
+  }
+  bound_->add_limit(unit_set_.max_time_step());
 }
 
 template <int D, class K>
@@ -700,11 +721,17 @@ void Simulation<D, K>::compute_density_and_pressure(double dt) {
     halo_.update(s_, {&s_.rho, &s_.p});
   }
   if (open_) set_open_boundary_pressure();
+  run_phase(StepPhase::kDensity);
 }
 
 template <int D, class K>
 void Simulation<D, K>::apply_wall_condition() {
-  if (!walls_) return;
+  if (walls_) apply_wall_values();
+  run_phase(StepPhase::kWallState);
+}
+
+template <int D, class K>
+void Simulation<D, K>::apply_wall_values() {
   {
     Timer tm(timer(WallBoundary<D>::kName));
     walls_->run(
@@ -721,6 +748,17 @@ void Simulation<D, K>::apply_wall_condition() {
 
 template <int D, class K>
 void Simulation<D, K>::compute_forces() {
+  {
+    // Forces accumulate: a^{n+1} starts at zero and every force unit adds to it.
+    Timer tm(timer("integrate"));
+    std::fill(s_.a.data(), s_.a.data() + s_.owned(), Vec<D>::Zero());
+  }
+  compute_fluid_forces();
+  run_phase(StepPhase::kForces);
+}
+
+template <int D, class K>
+void Simulation<D, K>::compute_fluid_forces() {
   Timer tm(timer("fluid_forces"));
   FluidForceInputs<D> in;
   in.fluids = &fluids_;
@@ -775,11 +813,14 @@ void Simulation<D, K>::prime() {
   }
   if (bodies_) bodies_->place_owned_particles();
   set_wall_scalars(t_);
+  step_dt_ = 0;
   exchange_and_search();
+  run_phase(StepPhase::kAfterSearch);
   compute_density_and_pressure(0.0);
   apply_wall_condition();
   compute_forces();
   if (open_) apply_open_boundaries_after_forces();
+  run_phase(StepPhase::kConstraints);
   if (bodies_) {
     if (contact_) {
       contact_->drift(nl_, 0.0, 1, t_, comm_);  // evaluates the initial contact forces
@@ -791,6 +832,7 @@ void Simulation<D, K>::prime() {
 
 template <int D, class K>
 std::string Simulation<D, K>::integrate_step(double dt) {
+  step_dt_ = dt;
   {
     Timer tm(timer("integrate"));
     kick(s_, 0.5 * dt);
@@ -829,18 +871,23 @@ std::string Simulation<D, K>::integrate_step(double dt) {
     Timer tc(timer(SpringDashpotContact<D>::kName));
     contact_->refresh(nl_, comm_);
   }
+  run_phase(StepPhase::kAfterSearch);
   compute_density_and_pressure(dt);
   apply_wall_condition();
   transport_scalars(dt);  // Fuchs 2021 eq. 37: rates from T^n at r^{n+1}, rho^{n+1}
   compute_forces();
   if (open_) apply_open_boundaries_after_forces();
-  Timer tm(timer("integrate"));
-  kick(s_, 0.5 * dt);
-  if (bodies_) {
-    bodies_->kick(0.5 * dt, t_);  // eq. 39
-    bodies_->update_accelerations(t_);
-    bodies_->update_owned_velocities();  // eq. 40
+  run_phase(StepPhase::kConstraints);
+  {
+    Timer tm(timer("integrate"));
+    kick(s_, 0.5 * dt);
+    if (bodies_) {
+      bodies_->kick(0.5 * dt, t_);  // eq. 39
+      bodies_->update_accelerations(t_);
+      bodies_->update_owned_velocities();  // eq. 40
+    }
   }
+  run_phase(StepPhase::kEndOfStep);
   return {};
 }
 
@@ -994,6 +1041,10 @@ void Simulation<D, K>::sample_series() {
                             {static_cast<double>(open_->through()[b])});
   }
   sample_scalars();
+  if (!unit_set_.empty()) {
+    const StepContext<D> ctx = context(dt_);
+    for (const auto& u : unit_set_.units()) u->sample(result_, ctx);
+  }
   if (probes_) {
     Timer tp(timer(Probes<D, K>::kName));
     const auto values = probes_->sample(s_, nl_, grid_, halo_.my_box(), comm_);
@@ -1114,6 +1165,7 @@ std::string Simulation<D, K>::write_checkpoint_now() {
   if (contact_) contact_->save(state, comm_);
   if (open_) open_->save(state);
   if (phase_) phase_->save(state);
+  for (const auto& u : unit_set_.units()) u->save(state);
   write_checkpoint(comm_, path, s_, state);
   if (comm_.root()) {
     if (opt_.prune_checkpoints) {  // keep the two newest
@@ -1230,6 +1282,7 @@ std::map<std::string, std::size_t> Simulation<D, K>::memory_by_owner() const {
   for (const ScalarDiffusion<D>* unit :
        {heat_ ? &*heat_ : nullptr, concentration_ ? &*concentration_ : nullptr})
     if (unit) m[unit->values().owner()] += unit->bytes();
+  for (const auto& u : unit_set_.units()) m[u->name()] += u->scratch_bytes();
   return m;
 }
 
@@ -1300,6 +1353,7 @@ void Simulation<D, K>::start() {
       if (open_) open_->load(state);
       if (phase_) phase_->load(state);
       if (contact_) contact_->load(state);  // every rank reads all pairs ...
+      for (const auto& u : unit_set_.units()) u->load(state);
     } catch (const std::runtime_error& e) {
       throw std::runtime_error("resuming from " + opt_.resume_from + ": " + e.what());
     }

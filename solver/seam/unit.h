@@ -1,0 +1,46 @@
+#pragma once
+// The seam every physics unit plugs into. A unit is one effect (a force, a field, a
+// constraint) that a scene composes, like a PySPH equation. It
+//  - has a name, which names its timer, its bytes and its entry in the result's active units;
+//  - adds the per-particle columns it needs in its constructor, owned by that name
+//    (ParticleStore::add(column, name(), persistent)), so memory_by_owner() counts them;
+//  - names the step phases it runs in (solver/seam/step_phase.h) and runs there;
+//  - adds its force into s.a in StepPhase::kForces and never assigns it: every force unit
+//    sees the sum of those before it and leaves it for those after;
+//  - declares what it writes to the result file (snapshot fields, series) once, and samples
+//    its series when the run does;
+//  - saves and loads what it keeps outside the particle columns with a checkpoint.
+// A case that does not call for a unit never builds it: no column, no timer, no pass.
+// docs/adding_a_unit.md walks through adding one.
+#include <cstddef>
+#include <limits>
+
+#include "solver/core/checkpoint_state.h"
+#include "solver/io/result_file.h"
+#include "solver/seam/step_context.h"
+#include "solver/seam/step_phase.h"
+
+namespace sph {
+
+template <int D>
+class Unit {
+ public:
+  virtual ~Unit() = default;
+  virtual const char* name() const = 0;
+  virtual PhaseMask phases() const = 0;
+  // Runs the unit's work of `phase` on the owned particles (collective where it exchanges).
+  virtual void run(StepPhase phase, StepContext<D>& ctx) = 0;
+  // The largest time step the unit allows, independent of the flow (infinity: no bound).
+  virtual double max_time_step() const { return std::numeric_limits<double>::infinity(); }
+  // Scratch storage beyond its columns (the columns are counted with the particle store).
+  virtual std::size_t scratch_bytes() const { return 0; }
+  // Declares snapshot fields (result.add_field) and series (result.add_series) once, before
+  // the result file is created or carried over.
+  virtual void declare_output(ResultFile& /*result*/) {}
+  // Appends one sample of each declared series (collective).
+  virtual void sample(ResultFile& /*result*/, const StepContext<D>& /*ctx*/) {}
+  virtual void save(CheckpointState& /*state*/) const {}
+  virtual void load(const CheckpointState& /*state*/) {}
+};
+
+}  // namespace sph
