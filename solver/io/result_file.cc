@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <stdexcept>
 
 namespace sph {
 
@@ -13,12 +14,21 @@ ResultFile::ResultFile(const Comm& comm, const std::string& dir)
              {"material", 1, "UInt", 2}};
 }
 
-void ResultFile::add_series(const std::string& name, std::vector<std::uint64_t> row) {
-  series_[name].row = std::move(row);
-}
-
-void ResultFile::append_series(const std::string& name, const std::vector<double>& row) {
-  Series& s = series_.at(name);
+void ResultFile::put(const std::string& name, const std::vector<double>& row,
+                     std::vector<std::uint64_t> shape) {
+  if (declaring_) {
+    std::uint64_t n = 1;
+    for (const std::uint64_t d : shape) n *= d;
+    if (n != row.size())
+      throw std::logic_error("series " + name + ": a sample of " + std::to_string(row.size()) +
+                             " values for a declared shape of " + std::to_string(n));
+    series_[name].row = std::move(shape);
+    return;
+  }
+  const auto it = series_.find(name);
+  if (it == series_.end())
+    throw std::logic_error("series " + name + " was sampled but not declared");
+  Series& s = it->second;
   s.pending.insert(s.pending.end(), row.begin(), row.end());
   ++s.pending_rows;
 }

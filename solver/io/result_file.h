@@ -24,10 +24,18 @@ class ResultFile {
   const std::string& h5_path() const { return h5_; }
   const std::string& xmf_path() const { return xmf_; }
 
-  // Declares a series "group/name" whose samples have shape `row` (empty: scalar). Call
-  // before create() or carry_over().
-  void add_series(const std::string& name, std::vector<std::uint64_t> row = {});
-  void append_series(const std::string& name, const std::vector<double>& row);
+  // Series "group/name" are named in one place, where they are sampled: put() appends a
+  // sample, and while declare() runs the sampling code once before create() or carry_over(),
+  // put() declares the series with the shape of one sample (empty: scalar) instead.
+  template <class Sample>
+  void declare(Sample&& sample) {
+    declaring_ = true;
+    sample();
+    declaring_ = false;
+  }
+  void put(const std::string& name, double value) { put(name, {value}, {}); }
+  void put(const std::string& name, const std::vector<double>& row,
+           std::vector<std::uint64_t> shape);
 
   // Starts a new result file.
   void create(const std::map<std::string, std::string>& meta);
@@ -74,6 +82,7 @@ class ResultFile {
     int precision;
   };
   std::vector<ExtraField> extra_;
+  bool declaring_ = false;
 };
 
 }  // namespace sph

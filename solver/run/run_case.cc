@@ -9,11 +9,6 @@
 
 namespace sph {
 
-extern template class Simulation<2, QuinticSpline<2>>;
-extern template class Simulation<2, WendlandC2<2>>;
-extern template class Simulation<3, QuinticSpline<3>>;
-extern template class Simulation<3, WendlandC2<3>>;
-
 const char* to_string(RunStatus s) {
   switch (s) {
     case RunStatus::kCompleted:

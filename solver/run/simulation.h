@@ -25,6 +25,7 @@
 #include "solver/bodies/rigid_bodies.h"
 #include "solver/bodies/spring_dashpot_contact.h"
 #include "solver/boundaries/open_boundaries.h"
+#include "solver/core/kernel.h"
 #include "solver/core/neighbor_list.h"
 #include "solver/core/pair_kernel.h"
 #include "solver/core/particle_store.h"
@@ -38,6 +39,7 @@
 #include "solver/io/checkpoint.h"
 #include "solver/io/result_file.h"
 #include "solver/parallel/halo.h"
+#include "solver/parallel/load_balance.h"
 #include "solver/physics/body_force.h"
 #include "solver/physics/continuity_density.h"
 #include "solver/physics/density_summation.h"
@@ -50,6 +52,7 @@
 #include "solver/run/code_version.h"
 #include "solver/run/output_schedule.h"
 #include "solver/run/run_case.h"
+#include "solver/run/run_recorder.h"
 #include "solver/run/unit_set.h"
 #include "solver/scene/scene_builder.h"
 
@@ -162,8 +165,8 @@ class Simulation {
   };
   // One reduction per step carries the time-step input and every stop/checkpoint decision.
   EndOfStep end_of_step_checks();
-  bool checkpoint_due() const;
-  void sample_series();
+  void sample_series();  // record_series() and the next sample time
+  void record_series();
   void write_snapshot();
   std::string write_checkpoint_now();
   void report_progress(bool force);
@@ -189,7 +192,7 @@ class Simulation {
                         : PairKernel<D>::Storage::kTable};  // the kernel of nl_'s pairs
   GuardSettings guards_;
   OutputSchedule schedule_;
-  ResultFile result_;
+  RunRecorder recorder_;  // result file, checkpoints, progress, metadata
 
   // Units (present only when the case needs them).
   std::optional<DensitySummation<D, K>> summation_;
@@ -245,12 +248,8 @@ class Simulation {
 
   // Bookkeeping.
   std::map<std::string, double> timers_;
-  double wall_start_ = 0, last_progress_wall_ = -1e300, last_progress_time_ = 0;
-  std::int64_t last_progress_step_ = 0;
-  double last_checkpoint_wall_ = 0;
   double imbalance_ = 1;
   std::int64_t global_particles_ = 0;
-  std::string last_checkpoint_;
   bool last_step_had_snapshot_ = false;
   double comm_seconds_ = 0;
   double solid_fraction_ = 0;  // largest fluid solid fraction after the last step
@@ -263,6 +262,11 @@ class Simulation {
   std::int64_t reordered_at_ = -25;  // step of the last memory reordering
 };
 
-}  // namespace sph
+// Instantiated in simulation_2d.cc and simulation_3d.cc, the only files that include
+// simulation_impl.h.
+extern template class Simulation<2, QuinticSpline<2>>;
+extern template class Simulation<2, WendlandC2<2>>;
+extern template class Simulation<3, QuinticSpline<3>>;
+extern template class Simulation<3, WendlandC2<3>>;
 
-#include "solver/run/simulation_impl.h"
+}  // namespace sph

@@ -1,6 +1,6 @@
 // Instantiations of the 3D simulation.
 #include "solver/core/kernel.h"
-#include "solver/run/simulation.h"
+#include "solver/run/simulation_impl.h"
 
 namespace sph {
 template class Simulation<3, QuinticSpline<3>>;

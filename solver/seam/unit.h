@@ -7,8 +7,8 @@
 //  - names the step phases it runs in (solver/seam/step_phase.h) and runs there;
 //  - adds its force into s.a in StepPhase::kForces and never assigns it: every force unit
 //    sees the sum of those before it and leaves it for those after;
-//  - declares what it writes to the result file (snapshot fields, series) once, and samples
-//    its series when the run does;
+//  - adds its snapshot fields once and samples its series (named where they are sampled)
+//    when the run does;
 //  - saves and loads what it keeps outside the particle columns with a checkpoint.
 // A case that does not call for a unit never builds it: no column, no timer, no pass.
 // docs/adding_a_unit.md walks through adding one.
@@ -34,10 +34,10 @@ class Unit {
   virtual double max_time_step() const { return std::numeric_limits<double>::infinity(); }
   // Scratch storage beyond its columns (the columns are counted with the particle store).
   virtual std::size_t scratch_bytes() const { return 0; }
-  // Declares snapshot fields (result.add_field) and series (result.add_series) once, before
-  // the result file is created or carried over.
+  // Adds the unit's snapshot fields (result.add_field) once, before the result file exists.
   virtual void declare_output(ResultFile& /*result*/) {}
-  // Appends one sample of each declared series (collective).
+  // One sample of each of its series, result.put("group/name", ...) (collective); the same
+  // call declares them before the file is created (ResultFile::declare).
   virtual void sample(ResultFile& /*result*/, const StepContext<D>& /*ctx*/) {}
   virtual void save(CheckpointState& /*state*/) const {}
   virtual void load(const CheckpointState& /*state*/) {}
