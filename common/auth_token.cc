@@ -1,4 +1,4 @@
-#include "server/common/auth_token.h"
+#include "common/auth_token.h"
 
 #include <grpcpp/client_context.h>
 

@@ -1,10 +1,10 @@
-#include "server/common/channel.h"
+#include "common/channel.h"
 
 #include <grpcpp/create_channel.h>
 #include <grpcpp/security/credentials.h>
 #include <grpcpp/support/channel_arguments.h>
 
-#include "server/common/message_limits.h"
+#include "common/message_limits.h"
 
 namespace sph::service {
 

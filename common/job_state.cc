@@ -1,4 +1,4 @@
-#include "server/common/job_state.h"
+#include "common/job_state.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "server/common/log.h"
+#include "common/log.h"
 
 #include <atomic>
 #include <chrono>
@@ -7,7 +7,7 @@
 #include <ctime>
 #include <string>
 
-#include "server/common/time_text.h"
+#include "common/time_text.h"
 
 namespace sph::service {
 namespace {

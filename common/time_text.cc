@@ -1,4 +1,4 @@
-#include "server/common/time_text.h"
+#include "common/time_text.h"
 
 #include <ctime>
 

@@ -2,8 +2,8 @@
 
 #include <cstdlib>
 
+#include "common/log.h"
 #include "server/clock.h"
-#include "server/common/log.h"
 
 namespace sph::server {
 

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <thread>
 
-#include "server/common/log.h"
+#include "common/log.h"
 #include "server/config.h"
 #include "server/service_host.h"
 

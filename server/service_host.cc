@@ -9,10 +9,10 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/auth_token.h"
+#include "common/message_limits.h"
 #include "server/api/malformed_request_interceptor.h"
 #include "server/clock.h"
-#include "server/common/auth_token.h"
-#include "server/common/message_limits.h"
 #include "server/results/results_owner.h"
 
 namespace sph::server {

@@ -4,8 +4,8 @@
 #include <cstdio>
 
 #include "cli/exit_codes.h"
-#include "server/common/auth_token.h"
-#include "server/common/channel.h"
+#include "common/auth_token.h"
+#include "common/channel.h"
 
 namespace sph::ctl {
 

@@ -3,8 +3,8 @@
 
 #include "cli/exit_codes.h"
 #include "commands/commands.h"
+#include "common/job_state.h"
 #include "render/json.h"
-#include "server/common/job_state.h"
 
 namespace sph::ctl {
 

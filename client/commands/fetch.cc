@@ -7,9 +7,9 @@
 
 #include "cli/exit_codes.h"
 #include "commands/commands.h"
+#include "common/sha256.h"
 #include "render/job_text.h"
 #include "render/json.h"
-#include "server/common/sha256.h"
 
 namespace sph::ctl {
 namespace {

@@ -11,10 +11,10 @@
 #include "case/validate.h"
 #include "cli/exit_codes.h"
 #include "commands/commands.h"
+#include "common/job_state.h"
+#include "common/message_limits.h"
 #include "render/job_text.h"
 #include "render/json.h"
-#include "server/common/job_state.h"
-#include "server/common/message_limits.h"
 
 namespace sph::ctl {
 namespace {

@@ -8,10 +8,10 @@
 
 #include "cli/exit_codes.h"
 #include "commands/commands.h"
+#include "common/job_state.h"
 #include "render/job_text.h"
 #include "render/json.h"
 #include "render/progress_bar.h"
-#include "server/common/job_state.h"
 
 namespace sph::ctl {
 namespace {

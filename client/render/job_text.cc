@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "server/common/job_state.h"
-#include "server/common/time_text.h"
+#include "common/job_state.h"
+#include "common/time_text.h"
 
 namespace sph::ctl {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <exception>
 
-#include "server/common/log.h"
+#include "common/log.h"
 #include "server/store/job_error.h"
 #include "server/store/sqlite.h"
 

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
+#include "common/job_state.h"
+#include "common/time_text.h"
 #include "server/api/errors.h"
-#include "server/common/job_state.h"
-#include "server/common/time_text.h"
 
 namespace sph::server::api {
 namespace {

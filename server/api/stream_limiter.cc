@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "server/common/auth_token.h"
+#include "common/auth_token.h"
 
 namespace sph::server::api {
 

@@ -7,12 +7,12 @@
 #include "case/load.h"
 #include "case/study_ladder.h"
 #include "case/validate.h"
+#include "common/log.h"
+#include "common/message_limits.h"
+#include "common/sha256.h"
 #include "server/api/errors.h"
 #include "server/api/stored_case_text.h"
 #include "server/clock.h"
-#include "server/common/log.h"
-#include "server/common/message_limits.h"
-#include "server/common/sha256.h"
 
 namespace sph::server::api {
 namespace {

@@ -1,7 +1,7 @@
 #include "server/api/watch_job_reactor.h"
 
+#include "common/job_state.h"
 #include "server/api/errors.h"
-#include "server/common/job_state.h"
 
 namespace sph::server::api {
 namespace {

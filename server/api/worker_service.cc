@@ -4,12 +4,12 @@
 #include <cmath>
 #include <filesystem>
 
+#include "common/job_state.h"
+#include "common/log.h"
+#include "common/message_limits.h"
+#include "common/shortened_text.h"
 #include "server/api/errors.h"
 #include "server/clock.h"
-#include "server/common/job_state.h"
-#include "server/common/log.h"
-#include "server/common/message_limits.h"
-#include "server/common/shortened_text.h"
 #include "server/store/job_ids.h"
 
 namespace sph::server::api {

@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "case/number_text.h"
-#include "server/common/job_state.h"
+#include "common/job_state.h"
 #include "server/store/job_ids.h"
 #include "server/store/schema.h"
 

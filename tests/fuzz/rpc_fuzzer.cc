@@ -33,7 +33,7 @@
 #include <string>
 #include <vector>
 
-#include "server/common/log.h"
+#include "common/log.h"
 #include "server/config.h"
 #include "server/service_host.h"
 #include "sph/v1/case.pb.h"

@@ -13,9 +13,9 @@
 #include <grpcpp/create_channel.h>
 #include <grpcpp/security/credentials.h>
 
+#include "common/sha256.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "harness/service_harness.h"
-#include "server/common/sha256.h"
 
 namespace sph::testing {
 namespace {
@@ -161,10 +161,10 @@ TEST(ServiceApi, BadCasesAreRejectedNamingTheFieldAndNothingIsStored) {
 }
 
 TEST(ServiceApi, ALargeCaseReachesItsPoolAndATooLargeOneIsRejectedNamingCaseText) {
-  // One message limit on the server and on the clients' channels (server/common/
-  // message_limits.h): a case the server accepts must also fit the Claim that hands it to a
-  // pool. A 20 MiB case was accepted and then could not be claimed while the clients' limit
-  // was 16 MiB. Large cases are inlined point sets: a fluid given as `count` points.
+  // One message limit on the server and on the clients' channels (common/message_limits.h):
+  // a case the server accepts must also fit the Claim that hands it to a pool. A 20 MiB case
+  // was accepted and then could not be claimed while the clients' limit was 16 MiB. Large
+  // cases are inlined point sets: a fluid given as `count` points.
   ServiceHarness h;
   h.start_server();
   auto with_points = [](int count) {

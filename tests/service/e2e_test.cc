@@ -10,8 +10,8 @@
 #include <set>
 #include <thread>
 
+#include "common/job_state.h"
 #include "harness/service_harness.h"
-#include "server/common/job_state.h"
 
 namespace sph::testing {
 namespace {

@@ -14,7 +14,7 @@
 #include <thread>
 #include <variant>
 
-#include "server/common/job_state.h"
+#include "common/job_state.h"
 #include "server/events/event_feed.h"
 #include "server/lease_reaper.h"
 #include "server/store/job_store.h"

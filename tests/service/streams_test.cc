@@ -17,9 +17,9 @@
 #include <grpcpp/security/credentials.h>
 #include <grpcpp/support/client_callback.h>
 
+#include "common/sha256.h"
 #include "harness/service_harness.h"
 #include "server/api/stream_limiter.h"
-#include "server/common/sha256.h"
 
 namespace sph::testing {
 namespace {

@@ -1,6 +1,6 @@
 #include "worker/pool/attempt_reporter.h"
 
-#include "server/common/log.h"
+#include "common/log.h"
 
 namespace sph::worker::pool {
 

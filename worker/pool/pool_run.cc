@@ -16,8 +16,8 @@
 
 #include "case/load.h"
 #include "case/validate.h"
-#include "server/common/auth_token.h"
-#include "server/common/log.h"
+#include "common/auth_token.h"
+#include "common/log.h"
 #include "solver/run/run_case.h"
 #include "worker/local_run.h"
 #include "worker/pool/attempt_reporter.h"

@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "server/common/sha256.h"
+#include "common/sha256.h"
 
 namespace sph::worker::pool {
 

@@ -2,8 +2,8 @@
 
 #include <chrono>
 
-#include "server/common/auth_token.h"
-#include "server/common/channel.h"
+#include "common/auth_token.h"
+#include "common/channel.h"
 
 namespace sph::worker::pool {
 namespace {

@@ -4,7 +4,7 @@
 
 #include "case/study_ladder.h"
 #include "case/study_spec_text.h"
-#include "server/common/log.h"
+#include "common/log.h"
 #include "study/run_study.h"
 
 namespace sph::worker::pool {

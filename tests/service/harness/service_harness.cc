@@ -12,8 +12,8 @@
 #include <regex>
 #include <sstream>
 
-#include "server/common/auth_token.h"
-#include "server/common/channel.h"
+#include "common/auth_token.h"
+#include "common/channel.h"
 
 namespace sph::testing {
 namespace fs = std::filesystem;
