@@ -1,0 +1,92 @@
+// Materials: names, phases, equations of state, viscosities, and references to them.
+#include "case/validate/validator.h"
+
+namespace sph::case_validation {
+
+void Validator::materials() {
+  for (int i = 0; i < c_.materials_size(); ++i) {
+    const auto& m = c_.materials(i);
+    const std::string f = idx("materials", i);
+    if (m.name().empty())
+      error(cat(f, "name"), "must not be empty");
+    else if (!names_.insert(m.name()).second)
+      error(cat(f, "name"), "duplicate material name '" + m.name() + "'");
+    phase_[m.name()] = m.phase() == v1::SOLID ? v1::SOLID : v1::FLUID;
+    positive(m.density(), cat(f, "density"));
+    if (m.phase() != v1::SOLID) {
+      const auto& e = m.eos();
+      const std::string ef = cat(f, "eos");
+      if (e.has_sound_speed() == e.has_reference_pressure())
+        error(ef, "give exactly one of sound_speed and reference_pressure");
+      if (e.has_sound_speed()) positive(e.sound_speed(), cat(ef, "sound_speed"));
+      if (e.has_reference_pressure())
+        positive(e.reference_pressure(), cat(ef, "reference_pressure"));
+      if (e.has_gamma()) {
+        positive(e.gamma(), cat(ef, "gamma"));
+        if (e.kind() != v1::TAIT) error(cat(ef, "gamma"), "only used with kind: TAIT");
+      }
+      if (!finite(e.background_pressure())) error(cat(ef, "background_pressure"), "must be finite");
+      if (m.has_dynamic_viscosity() && m.has_kinematic_viscosity())
+        error(f, "give at most one of dynamic_viscosity and kinematic_viscosity");
+      if (m.has_dynamic_viscosity())
+        non_negative(m.dynamic_viscosity(), cat(f, "dynamic_viscosity"));
+      if (m.has_kinematic_viscosity())
+        non_negative(m.kinematic_viscosity(), cat(f, "kinematic_viscosity"));
+      if (m.has_transport_background_pressure()) {
+        non_negative(m.transport_background_pressure(), cat(f, "transport_background_pressure"));
+        if (!c_.fluid_model().transport_velocity())
+          error(cat(f, "transport_background_pressure"),
+                "set, but fluid_model.transport_velocity is not enabled");
+      }
+    } else if (m.has_eos()) {
+      error(cat(f, "eos"), "a SOLID material has no equation of state");
+    }
+    // Thermal and diffusion properties: checked against the effects the case enables.
+    if (m.has_heat_capacity()) positive(m.heat_capacity(), cat(f, "heat_capacity"));
+    if (m.has_thermal_conductivity())
+      non_negative(m.thermal_conductivity(), cat(f, "thermal_conductivity"));
+    if (m.has_diffusivity()) non_negative(m.diffusivity(), cat(f, "diffusivity"));
+    if (!c_.has_thermal() && (m.has_heat_capacity() || m.has_thermal_conductivity()))
+      error(cat(f, m.has_heat_capacity() ? "heat_capacity" : "thermal_conductivity"),
+            "set, but heat conduction is not enabled (add a `thermal { }` block)");
+    if (!c_.has_diffusion() && (m.has_diffusivity() || m.fixed_concentration()))
+      error(cat(f, m.has_diffusivity() ? "diffusivity" : "fixed_concentration"),
+            "set, but concentration diffusion is not enabled (add a `diffusion { }` block)");
+  }
+}
+
+void Validator::material_ref(const std::string& name, v1::MaterialPhase want,
+                             const std::string& field, bool required) {
+  if (name.empty()) {
+    if (required) error(field, "is required");
+    return;
+  }
+  auto it = phase_.find(name);
+  if (it == phase_.end()) {
+    // A few names are enough to spot a typo; all of them, in each of a thousand such errors,
+    // would be megabytes.
+    std::string known;
+    int listed = 0;
+    for (const auto& n : names_) {
+      if (listed == kMaterialsListed) {
+        known += " and " + std::to_string(names_.size() - listed) + " more";
+        break;
+      }
+      known += (known.empty() ? "" : ", ") + n;
+      ++listed;
+    }
+    error(field,
+          "unknown material '" + name + "' (defined: " + (known.empty() ? "none" : known) + ")");
+  } else if (it->second != want) {
+    error(field, "material '" + name + "' is " + (it->second == v1::SOLID ? "SOLID" : "FLUID") +
+                     ", expected " + (want == v1::SOLID ? "SOLID" : "FLUID"));
+  }
+}
+
+int Validator::material_position(const std::string& name) const {
+  for (int k = 0; k < c_.materials_size(); ++k)
+    if (c_.materials(k).name() == name) return k;
+  return -1;
+}
+
+}  // namespace sph::case_validation
