@@ -72,10 +72,10 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
   //    half kick, and the next one must hand out the same sum, split anew, or momentum is
   //    lost. A melted particle takes its own share f_r (plus the fluid's body force), not
   //    the body's acceleration at its place (eq. 36), which includes the pull of the rest of
-  //    the body that keeps it on the rigid motion: with that, a spinning disk melting in a
-  //    periodic box lost 0.3% of the total momentum in 300 steps. A frozen particle brings its
-  //    force as a fluid particle, m (a - b), into its body's sum; its share from rigid
-  //    neighbours is balanced in their bodies' sums.
+  //    the body that keeps it on the rigid motion, a force nothing balances once the particle
+  //    is fluid, so the total momentum would drift (docs/effects.md, "Design measurements").
+  //    A frozen particle brings its force as a fluid particle, m (a - b), into its body's
+  //    sum; its share from rigid neighbours is balanced in their bodies' sums.
   auto& fluid_force = bodies.fluid_force();
   for (const auto& [i, r] : melt) {
     s.kind[i] = Kind::kFluid;

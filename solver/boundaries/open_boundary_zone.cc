@@ -62,8 +62,8 @@ OpenBoundaryZone<D>::OpenBoundaryZone(const v1::Case& c, int index, std::uint16_
   const double mid = 0.5 * (lo_[axis_] + hi_[axis_]);
   // Sample points lie r_c inside the fluid: their kernel support reaches the face but not the
   // buffer. At the face itself the mean would half be made by the buffer's own state, and a
-  // pressure outlet's velocity then feeds back on itself (measured: the centre-line speed
-  // grew 10% over the last r_c before the outlet).
+  // pressure outlet's velocity would then feed back on itself (docs/effects.md, "Design
+  // measurements").
   const double sample_depth = kernel_support_radius(c);
   std::vector<double> shape(lanes, 0.0);
   std::vector<bool> open(lanes, true);

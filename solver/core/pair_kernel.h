@@ -8,10 +8,10 @@
 // vectorise (K::evaluate), and equal those the passes computed before to the bit
 // (r = |x_i - x_j|, K::evaluate = W and dW), so results are unchanged.
 // Two ways to keep them:
-//  - kTable: every pair evaluated once when the list is built (24 bytes a pair). 2D powder
-//    scene at the paper's dx on one core: 41 ms a step before, 27 ms with the table.
+//  - kTable: every pair evaluated once when the list is built (24 bytes a pair); the faster
+//    of the two (docs/effects.md, "Design measurements").
 //  - kStream: a particle's pairs evaluated into a scratch buffer each time a pass asks for
-//    them; no storage, each pass gathers and evaluates again (38 ms in that scene).
+//    them; no storage, each pass gathers and evaluates again.
 #include <cmath>
 #include <cstdint>
 #include <limits>

@@ -2,7 +2,8 @@
 // Conservation diagnostics of the fluid, reduced over ranks: mass, linear momentum, kinetic,
 // potential (with respect to gravity) and elastic energy. Their sum is what an SPH fluid
 // conserves without viscosity: kinetic and potential alone swing with the acoustic waves, by
-// as much as 5% of what viscosity takes from a decaying sloshing wave at density ratio 10.
+// enough to hide what viscosity takes from a decaying wave (docs/effects.md, "Design
+// measurements").
 #include <vector>
 
 #include "solver/core/particle_store.h"

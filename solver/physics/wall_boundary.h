@@ -11,8 +11,8 @@
 // weight gets its own p_w from its own particles only: every phase sees the wall as in the
 // single-phase condition. Extrapolating the mixture instead hands a light phase the heavy
 // phase's hydrostatic term rho_heavy g r, and a pressure error of rho_heavy g dx accelerates
-// light particles by rho_heavy/rho_light times more than heavy ones (measured at density ratio
-// 1000: air at the contact line flung at 40 times the sloshing speed). rho_w is stored for the
+// light particles by rho_heavy/rho_light times more than heavy ones (docs/effects.md, "Design
+// measurements"). rho_w is stored for the
 // majority fluid; FluidForces converts a p_w for a pair with another fluid (eq. 28 "from the
 // interacting fluid particle b"). A third fluid at one wall particle uses the majority's p_w.
 #include <algorithm>

@@ -162,9 +162,9 @@ TEST(ServiceApi, BadCasesAreRejectedNamingTheFieldAndNothingIsStored) {
 
 TEST(ServiceApi, ALargeCaseReachesItsPoolAndATooLargeOneIsRejectedNamingCaseText) {
   // One message limit on the server and on the clients' channels (common/message_limits.h):
-  // a case the server accepts must also fit the Claim that hands it to a pool. A 20 MiB case
-  // was accepted and then could not be claimed while the clients' limit was 16 MiB. Large
-  // cases are inlined point sets: a fluid given as `count` points.
+  // a case the server accepts must also fit the Claim that hands it to a pool, or it would be
+  // accepted and then never claimed. Large cases are inlined point sets: a fluid given as
+  // `count` points.
   ServiceHarness h;
   h.start_server();
   auto with_points = [](int count) {

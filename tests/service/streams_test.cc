@@ -352,7 +352,7 @@ TEST(ServiceStreams, AClientsOpenStreamsAreCappedAndAnEndedOneFreesItsPlace) {
   EXPECT_FALSE(watchers.all[0]->done()) << "a refusal must not end the open streams";
 
   // A made-up token does not make the same host another client (the server has no token, so
-  // any is accepted): found in review, each new token used to open three more.
+  // any is accepted), or each new token would open three more streams.
   Watcher other(*s.jobs, job, tally, "Bearer someone-else");
   ASSERT_TRUE(eventually(10s, [&] { return other.done(); }));
   EXPECT_EQ(other.status().error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED)

@@ -145,8 +145,8 @@ TEST(RigidBody, CheckpointStateRestoresTheBody) {
 
 TEST(RigidBody, CheckpointOfAnotherCaseIsRefusedSayingWhy) {
   // Resuming a one-body checkpoint with a case of two bodies is refused by the body count;
-  // a checkpoint without the count (older versions) by the second body's missing state,
-  // named (not std::map::at's bare "map::at").
+  // a checkpoint that does not store the count, by the second body's missing state, named
+  // (not std::map::at's bare "map::at").
   auto one = body_case(2, 0.1, "ball { center { x: -0.5 y: 0 } radius: 0.2 }");
   auto two = one;
   auto* second = two.add_bodies();
