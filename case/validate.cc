@@ -2,6 +2,7 @@
 
 #include "case/validate/validator.h"
 #include "case/validate_reference.h"
+#include "case/validate_surface_tension.h"
 
 namespace sph {
 
@@ -24,6 +25,7 @@ std::vector<FieldError> validate_case(const v1::Case& c, const ValidationLimits&
   if (c.has_thermal()) v.thermal();
   v.open_boundaries();
   v.add_uncapped(validate_reference(c));
+  v.add(validate_surface_tension(c));
   v.run_settings();
   v.probes();
   v.case_size();

@@ -5,6 +5,8 @@
 
 #include <mpi.h>
 
+#include "solver/physics/surface_tension.h"
+
 namespace sph {
 
 template <int D>
@@ -35,7 +37,9 @@ double UnitSet<D>::max_time_step() const {
 template <int D>
 std::vector<std::unique_ptr<Unit<D>>> make_units(const UnitBuildContext<D>& b) {
   std::vector<std::unique_ptr<Unit<D>>> units;
-  (void)b;
+  if (b.c.has_surface_tension())
+    units.push_back(std::make_unique<SurfaceTension<D>>(b.c, b.materials, b.particles, b.h,
+                                                        b.wall_volume, b.cfl_factor, b.wall_index));
   return units;
 }
 

@@ -473,5 +473,83 @@ TEST(CaseValidation, EveryShippedCaseIsValid) {
   EXPECT_GE(checked, 42);
 }
 
+// surface_tension { } (case/validate_surface_tension.cc): coefficients, materials, pairs and
+// contact angles are each named with the limit they break.
+const char* kTwoFluids = R"(materials { name: "oil" density: 900 eos { sound_speed: 10 } }
+materials { name: "air" density: 1 eos { sound_speed: 10 } }
+materials { name: "steel" phase: SOLID density: 7800 }
+)";
+
+TEST(CaseValidation, SurfaceTensionPairs) {
+  const std::string m = kTwoFluids;
+  auto errs = errors_of(m + R"(surface_tension {
+    pairs { material_a: "water" material_b: "oil" sigma: 0.03 } })");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  errs = errors_of(m + R"(surface_tension { pairs { material_a: "water" sigma: 0.072 } })");
+  EXPECT_TRUE(has_error(errs, "surface_tension.pairs[0].material_b",
+                        "is required: free surfaces (a fluid against void) are not supported yet"))
+      << dump(errs);
+  errs = errors_of(
+      m + R"(surface_tension { pairs { material_a: "water" material_b: "oil" sigma: -1 } })");
+  EXPECT_TRUE(has_error(errs, "surface_tension.pairs[0].sigma", "must be > 0 and finite [N/m]; got -1"))
+      << dump(errs);
+  errs = errors_of(
+      m + R"(surface_tension { pairs { material_a: "water" material_b: "oil" sigma: 0 } })");
+  EXPECT_TRUE(has_error(errs, "surface_tension.pairs[0].sigma", "got 0")) << dump(errs);
+  errs = errors_of(
+      m + R"(surface_tension { pairs { material_a: "mercury" material_b: "oil" sigma: 0.4 } })");
+  EXPECT_TRUE(has_error(errs, "surface_tension.pairs[0].material_a", "unknown material 'mercury'"))
+      << dump(errs);
+  errs = errors_of(
+      m + R"(surface_tension { pairs { material_a: "water" material_b: "steel" sigma: 1 } })");
+  EXPECT_TRUE(has_error(errs, "surface_tension.pairs[0].material_b",
+                        "material 'steel' is SOLID; surface tension acts between FLUID materials"))
+      << dump(errs);
+  errs = errors_of(
+      m + R"(surface_tension { pairs { material_a: "water" material_b: "water" sigma: 1 } })");
+  EXPECT_TRUE(has_error(errs, "surface_tension.pairs[0].material_b", "must differ from material_a"))
+      << dump(errs);
+  errs = errors_of(m + R"(surface_tension {
+    pairs { material_a: "water" material_b: "oil" sigma: 1 }
+    pairs { material_a: "oil" material_b: "water" sigma: 2 } })");
+  EXPECT_TRUE(has_error(errs, "surface_tension.pairs[1].material_b",
+                        "duplicate pair 'oil' - 'water' (already surface_tension.pairs[0])"))
+      << dump(errs);
+  errs = errors_of(m + R"(surface_tension { pairs { material_b: "oil" sigma: 1 } })");
+  EXPECT_TRUE(has_error(errs, "surface_tension.pairs[0].material_a", "is required")) << dump(errs);
+  errs = errors_of("surface_tension { }");
+  EXPECT_TRUE(has_error(errs, "surface_tension.pairs", "give at least one pair")) << dump(errs);
+}
+
+TEST(CaseValidation, SurfaceTensionContactAngles) {
+  const std::string m = std::string(kTwoFluids) +
+                        R"(walls { name: "floor" shape { box { lo { x: 0 y: 0 } hi { x: 2 y: 0.4 } } } }
+)";
+  auto errs = errors_of(m + R"(surface_tension { pairs { material_a: "water" material_b: "oil" sigma: 0.03 }
+    walls { wall: "floor" contact_angle: 60 material: "water" } })");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  for (const char* angle : {"0", "180", "-30", "200"}) {
+    errs = errors_of(m + "surface_tension { pairs { material_a: \"water\" material_b: \"oil\" sigma: 0.072 } "
+                         "walls { wall: \"floor\" contact_angle: " +
+                     angle + " material: \"water\" } }");
+    EXPECT_TRUE(has_error(errs, "surface_tension.walls[0].contact_angle",
+                          std::string("must be in (0, 180) degrees; got ") + angle))
+        << dump(errs);
+  }
+  errs = errors_of(m + R"(surface_tension { pairs { material_a: "water" material_b: "oil" sigma: 0.03 }
+    walls { wall: "roof" contact_angle: 60 material: "water" }
+    walls { wall: "floor" contact_angle: 60 material: "air" }
+    walls { wall: "floor" contact_angle: 70 material: "water" }
+    walls { contact_angle: 70 material: "water" } })");
+  EXPECT_TRUE(has_error(errs, "surface_tension.walls[0].wall", "unknown wall 'roof'")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "surface_tension.walls[1].material",
+                        "material 'air' has no surface tension (it is in no pair)"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "surface_tension.walls[2].wall",
+                        "duplicate contact angle for wall 'floor' (already surface_tension.walls[1])"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "surface_tension.walls[3].wall", "is required")) << dump(errs);
+}
+
 }  // namespace
 }  // namespace sph

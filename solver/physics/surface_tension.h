@@ -1,0 +1,307 @@
+#pragma once
+// Surface tension as a continuum surface force (Brackbill, Kothe, Zemach 1992) in the SPH form
+// of Adami, Hu, Adams 2010, "A new surface-tension formulation for multi-phase SPH using a
+// reproducing divergence approximation", J. Comput. Phys. 229, 5011 (A10 below):
+//
+//   pass 1 (every fluid particle of a material with surface tension):
+//     grad c_i = 1/V_i sum_j (V_i^2 + V_j^2) c~_ij grad W_ij,
+//     c~_ij = (rho_j c_i + rho_i c_j) / (rho_i + rho_j)      (A10, the density-weighted colour)
+//   with the colour c = 1 on the particle's own phase and 0 on the other. Written as
+//   c~_ij - c_i = rho_i / (rho_i + rho_j) (c_j - c_i), which differs from A10 by
+//   c_i sum_j (V_i^2 + V_j^2) grad W_ij, zero for a full support, so that only pairs across an
+//   interface contribute and the bulk gets an exact zero instead of lattice noise. The density
+//   weight gives the heavy phase of a large density ratio the whole jump of c (the light one
+//   almost none), which keeps the force off the light phase (A10).
+//   Each interface contributes with its own coefficient, G_i = sum_k sigma_{ik} grad c_i^{ik},
+//   and the unit normal n_i = G_i / |G_i| points into the particle's own phase. A particle
+//   has a normal only where |grad c_i| > 0.01 / h (the filter of Morris 2000: the normals of
+//   particles far from the interface are noise); the others get n = 0;
+//   halo update of n;
+//   pass 2: curvature by a reproducing divergence over the neighbours with a normal. A10's
+//     div n_i = d sum_j (n_i - n_j) . grad W_ij V_j / sum_j r_ij . grad W_ij V_j
+//   is exact for a linear field on an isotropic neighbourhood; the neighbours with a normal
+//   form a band across the interface, narrower than the kernel along it, where it reads the
+//   curvature high. Its tensor form div n_i = tr(N M^-1), with N = sum_j V_j (n_j - n_i) (x)
+//   grad W_ij and M = sum_j V_j (x_j - x_i) (x) grad W_ij (the moment matrix of Bonet & Lok
+//   1999), is exact for a linear field on any neighbourhood and is used wherever M is well
+//   conditioned;
+//   kappa_i = -div n_i (positive for a convex drop of the particle's phase), and
+//     a_i += kappa_i G_i / rho_i              (the CSF force sigma kappa grad c per volume)
+//   accumulated into a^{n+1}. A neighbour of the other phase enters with -n_j: the normals
+//   of both phases point into their own phase, so across a fluid-fluid interface they are
+//   opposite, and -n_j is A10's single normal field seen from particle i's side. Both sides
+//   get kappa G of the same sign, as in A10, and the integral of the force across the
+//   interface is sigma kappa: in 2D the Laplace jump p_in - p_out = sigma / R.
+//
+// Free surfaces (a fluid against void) are not handled: A10's sum over what is there,
+// 1/V_i sum_j (V_i^2 + V_j^2) grad W_ij, evaluated where the kernel support is less than 95%
+// filled, gave the outermost particles of a lattice circle curvatures up to 5 / R, and
+// validation refuses such pairs (docs/surface_tension.md).
+//
+// Static contact angle (Breinlinger, Polfer, Hashibon, Moseler 2013,
+// J. Comput. Phys. 243): a particle with a normal whose nearest wall neighbour belongs to a wall
+// with an angle theta has its normal replaced by n = -cos(theta) n_w + sin(theta) t, where n_w =
+// -sum_j V_w grad W_ij over its wall neighbours (unit, pointing out of the wall) and t the unit
+// tangent along the wall in the plane of n and n_w; theta is measured through the named material,
+// 180 - theta through the other. The curvature of the turned normals bends the interface towards
+// the angle. The magnitude |G| is kept.
+//
+// Deterministic and rank independent: the sums run over the neighbour list in its canonical
+// order; the normals of ghosts come from their owners.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <Eigen/LU>
+
+#include "case/materials.h"
+#include "solver/core/pair_kernel.h"
+#include "solver/seam/unit.h"
+#include "sph/v1/case.pb.h"
+
+namespace sph {
+
+template <int D>
+using Mat = Eigen::Matrix<double, D, D, Eigen::DontAlign>;
+
+template <int D>
+class SurfaceTension final : public Unit<D> {
+ public:
+  static constexpr const char* kName = "surface_tension";
+  // A particle has a normal where |grad c| h exceeds this (Morris 2000).
+  static constexpr double kNormalThreshold = 0.01;
+  // det M / (tr M / d)^d below which the curvature takes A10's scalar divergence instead of
+  // the full tensor one (M nearly singular).
+  static constexpr double kMinMomentRatio = 0.05;
+
+  // wall_index: which wall of the case each wall particle is (null without walls).
+  SurfaceTension(const v1::Case& c, const std::vector<MaterialParams>& materials,
+                 ParticleStore<D>& particles, double h, double wall_volume, double cfl_factor,
+                 const Column<std::uint16_t>* wall_index);
+
+  const char* name() const override { return kName; }
+  PhaseMask phases() const override { return phase_bit(StepPhase::kForces); }
+  void run(StepPhase phase, StepContext<D>& ctx) override;
+  double max_time_step() const override { return max_dt_; }
+  void declare_output(ResultFile& result) override;
+  void sample(ResultFile& result, const StepContext<D>& ctx) override;
+
+  // sigma of materials a and b, 0 without tension.
+  double sigma(std::size_t a, std::size_t b) const { return sigma_[a * nm_ + b]; }
+
+ private:
+  struct ContactAngle {
+    bool set = false;
+    double cos_own = 0, sin_own = 0;      // theta through `through`
+    double cos_other = 0, sin_other = 0;  // 180 - theta through any other material
+    std::uint16_t through = kNoMaterial;
+  };
+  void normals(StepContext<D>& ctx);
+  void curvature_and_force(StepContext<D>& ctx);
+
+  std::size_t nm_ = 0;                 // materials
+  std::vector<double> sigma_;          // nm x nm
+  std::vector<char> active_;           // per material: some interface has tension
+  std::vector<ContactAngle> contact_;  // per wall of the case
+  double wall_volume_ = 0, min_gradient_ = 0;
+  double max_dt_ = std::numeric_limits<double>::infinity();
+  const Column<std::uint16_t>* wall_index_ = nullptr;
+  Column<Vec<D>>& normal_;     // unit normal into the own phase, 0 where none (ghosts too)
+  Column<Vec<D>>& gradient_;   // G_i = sum_k sigma_ik grad c_i^ik [N/m^2], owned
+  Column<double>& curvature_;  // kappa_i [1/m], owned (a snapshot field)
+};
+
+template <int D>
+SurfaceTension<D>::SurfaceTension(const v1::Case& c, const std::vector<MaterialParams>& materials,
+                                  ParticleStore<D>& particles, double h, double wall_volume,
+                                  double cfl_factor, const Column<std::uint16_t>* wall_index)
+    : nm_(materials.size()),
+      sigma_(nm_ * nm_, 0.0),
+      active_(nm_, 0),
+      contact_(static_cast<std::size_t>(c.walls_size())),
+      wall_volume_(wall_volume),
+      min_gradient_(kNormalThreshold / h),
+      wall_index_(wall_index),
+      normal_(particles.template add<Vec<D>>("surface_tension_normal", kName, false)),
+      gradient_(particles.template add<Vec<D>>("surface_tension_gradient", kName, false)),
+      curvature_(particles.template add<double>("surface_tension_curvature", kName, false)) {
+  const auto& st = c.surface_tension();
+  for (const auto& p : st.pairs()) {
+    const auto a = static_cast<std::size_t>(material_index(materials, p.material_a()));
+    const auto o = static_cast<std::size_t>(material_index(materials, p.material_b()));
+    sigma_[a * nm_ + o] = sigma_[o * nm_ + a] = p.sigma();
+    active_[a] = active_[o] = 1;
+    // Capillary waves of wave number k have omega^2 = sigma k^3 / (rho_a + rho_b): the bound
+    // of Brackbill 1992 with their mean density, (rho_a + rho_b) / 2, resolves the shortest,
+    // k = pi / h, as A10 does.
+    const double rho_mean = 0.5 * (materials[a].rho0 + materials[o].rho0);
+    max_dt_ = std::min(
+        max_dt_,
+        cfl_factor * 0.25 * std::sqrt(rho_mean * h * h * h / (2.0 * std::numbers::pi * p.sigma())));
+  }
+  for (const auto& w : st.walls()) {
+    ContactAngle ca;
+    ca.set = true;
+    const double theta = w.contact_angle() * std::numbers::pi / 180.0;
+    ca.cos_own = std::cos(theta);
+    ca.sin_own = std::sin(theta);
+    ca.cos_other = -ca.cos_own;  // cos(pi - theta)
+    ca.sin_other = ca.sin_own;
+    ca.through = static_cast<std::uint16_t>(material_index(materials, w.material()));
+    for (int k = 0; k < c.walls_size(); ++k)
+      if (c.walls(k).name() == w.wall()) contact_[static_cast<std::size_t>(k)] = ca;
+  }
+}
+
+template <int D>
+void SurfaceTension<D>::run(StepPhase /*phase*/, StepContext<D>& ctx) {
+  normals(ctx);
+  ctx.halo.update(ctx.particles, {&normal_});
+  curvature_and_force(ctx);
+}
+
+template <int D>
+void SurfaceTension<D>::normals(StepContext<D>& ctx) {
+  ParticleStore<D>& s = ctx.particles;
+  const NeighborList<D>& nl = ctx.neighbors;
+  const Vec<D>* x = s.x.data();
+  const double* rho = s.rho.data();
+  const double* m = s.m.data();
+  const Kind* kind = s.kind.data();
+  const std::uint16_t* mat = s.material.data();
+  const double Vw = wall_volume_;
+  const bool contact = !contact_.empty() && wall_index_ != nullptr;
+  for (std::size_t i = 0; i < s.owned(); ++i) {
+    normal_[i] = Vec<D>::Zero();
+    gradient_[i] = Vec<D>::Zero();
+    curvature_[i] = 0;
+    if (kind[i] != Kind::kFluid || !active_[mat[i]]) continue;
+    const std::uint16_t mi = mat[i];
+    const double* sig = sigma_.data() + mi * nm_;
+    const Vec<D> xi = x[i];
+    const double rhoi = rho[i], Vi = m[i] / rhoi, Vi2 = Vi * Vi;
+    Vec<D> g = Vec<D>::Zero();  // sum over the interfaces of grad c times V_i
+    Vec<D> G = Vec<D>::Zero();  // the same, each interface times its sigma
+    const PairValues pv = ctx.pairs.of(nl, i);
+    const double *g_r = pv.r, *g_dw = pv.dw;
+    const std::uint32_t* const fluid_end = nl.fluid_end(i);
+    for (const std::uint32_t* jp = nl.begin(i); jp != fluid_end; ++jp, ++g_r, ++g_dw) {
+      const std::uint32_t j = *jp;
+      const double r = *g_r;
+      if (r == 0.0) continue;
+      const Vec<D> gradW = (*g_dw / r) * (xi - x[j]);
+      const double Vj = m[j] / rho[j], s2 = Vi2 + Vj * Vj;
+      const std::uint16_t mj = mat[j];
+      if (mj == mi || sig[mj] == 0.0) continue;
+      // (c~_ij - c_i) with c_i = 1, c_j = 0: towards the own phase.
+      const Vec<D> t = (s2 * rhoi / (rhoi + rho[j])) * gradW;
+      g -= t;
+      G -= sig[mj] * t;
+    }
+    double nearest_wall = std::numeric_limits<double>::infinity();
+    const ContactAngle* angle = nullptr;
+    Vec<D> wall_normal = Vec<D>::Zero();
+    for (const std::uint32_t* jp = fluid_end; jp != nl.end(i); ++jp, ++g_r, ++g_dw) {
+      const std::uint32_t j = *jp;
+      const double r = *g_r;
+      if (r == 0.0) continue;
+      const Vec<D> gradW = (*g_dw / r) * (xi - x[j]);
+      if (contact && kind[j] == Kind::kWall) {
+        wall_normal -= Vw * gradW;
+        if (r < nearest_wall) {
+          nearest_wall = r;
+          angle = &contact_[(*wall_index_)[j]];
+        }
+      }
+    }
+    g /= Vi;
+    G /= Vi;
+    const double gn = G.norm();
+    if (!(g.norm() > min_gradient_) || !(gn > 0)) continue;
+    Vec<D> n = G / gn;
+    if (angle != nullptr && angle->set) {
+      const double wn = wall_normal.norm();
+      if (wn > 0) {
+        const Vec<D> nw = wall_normal / wn;
+        Vec<D> t = n - n.dot(nw) * nw;
+        const double tn = t.norm();
+        if (tn > 0) {
+          t /= tn;
+          const bool own = mi == angle->through;
+          n = -(own ? angle->cos_own : angle->cos_other) * nw +
+              (own ? angle->sin_own : angle->sin_other) * t;
+          G = gn * n;
+        }
+      }
+    }
+    normal_[i] = n;
+    gradient_[i] = G;
+  }
+}
+
+template <int D>
+void SurfaceTension<D>::curvature_and_force(StepContext<D>& ctx) {
+  ParticleStore<D>& s = ctx.particles;
+  const NeighborList<D>& nl = ctx.neighbors;
+  const Vec<D>* x = s.x.data();
+  const double* rho = s.rho.data();
+  const double* m = s.m.data();
+  const std::uint16_t* mat = s.material.data();
+  const Vec<D>* normal = normal_.data();
+  for (std::size_t i = 0; i < s.owned(); ++i) {
+    const Vec<D> ni = normal[i];
+    if (ni.isZero()) continue;  // no normal: no interface here (walls and bodies never have one)
+    const std::uint16_t mi = mat[i];
+    const Vec<D> xi = x[i];
+    // N = sum_j V_j (n_j - n_i) (x) grad W_ij and M = sum_j V_j (x_j - x_i) (x) grad W_ij over
+    // the neighbours with a normal: for a linear field n_j - n_i = A (x_j - x_i), N = A M.
+    Mat<D> N = Mat<D>::Zero(), M = Mat<D>::Zero();
+    const PairValues pv = ctx.pairs.of(nl, i);
+    const double *g_r = pv.r, *g_dw = pv.dw;
+    for (const std::uint32_t* jp = nl.begin(i); jp != nl.fluid_end(i); ++jp, ++g_r, ++g_dw) {
+      const std::uint32_t j = *jp;
+      const Vec<D>& nj = normal[j];
+      const double r = *g_r;
+      if (r == 0.0 || nj.isZero()) continue;
+      const Vec<D> xji = x[j] - xi;
+      const Vec<D> VgradW = (-(m[j] / rho[j]) * *g_dw / r) * xji;  // V_j grad W_ij
+      const Vec<D> nji = mat[j] == mi ? Vec<D>(nj - ni) : Vec<D>(-nj - ni);
+      N.noalias() += nji * VgradW.transpose();
+      M.noalias() += xji * VgradW.transpose();
+    }
+    // div n = tr(A) = tr(N M^-1); A10's d tr(N) / tr(M) where M is nearly singular (few
+    // neighbours with a normal, all on one line).
+    const double trM = M.trace();
+    if (!(trM > 0)) continue;
+    const double det = M.determinant(), iso = std::pow(trM / D, D);
+    const double div =
+        det > kMinMomentRatio * iso ? (N * M.inverse()).trace() : D * N.trace() / trM;
+    const double kappa = -div;
+    curvature_[i] = kappa;
+    s.a[i] += (kappa / rho[i]) * gradient_[i];  // forces accumulate (solver/seam/unit.h)
+  }
+}
+
+template <int D>
+void SurfaceTension<D>::declare_output(ResultFile& result) {
+  result.add_field(curvature_);
+}
+
+template <int D>
+void SurfaceTension<D>::sample(ResultFile& result, const StepContext<D>& ctx) {
+  std::int64_t count = 0;
+  double largest = 0;
+  for (std::size_t i = 0; i < ctx.particles.owned(); ++i) {
+    if (normal_[i].isZero()) continue;
+    ++count;
+    largest = std::max(largest, std::abs(curvature_[i]));
+  }
+  // Integer sums and maxima: the same on every rank count.
+  result.put("surface_tension/interface_particles", static_cast<double>(ctx.comm.sum(count)));
+  result.put("surface_tension/max_curvature", ctx.comm.max(largest));
+}
+
+}  // namespace sph
