@@ -1,25 +1,17 @@
 #include "server/api/job_service.h"
 
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <vector>
 
-#include "case/estimate.h"
-#include "case/load.h"
-#include "case/study_ladder.h"
-#include "case/validate.h"
 #include "common/job_state.h"
 #include "common/log.h"
 #include "common/message_limits.h"
-#include "common/sha256.h"
 #include "common/shortened_text.h"
 #include "common/time_text.h"
 #include "server/api/errors.h"
 #include "server/api/fetch_result_reactor.h"
 #include "server/api/refused_stream.h"
-#include "server/api/stored_case_text.h"
 #include "server/api/watch_job_reactor.h"
 #include "server/clock.h"
 #include "server/results/job_files_removal.h"
