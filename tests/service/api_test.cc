@@ -54,18 +54,6 @@ std::vector<v1::Job> all_jobs(ServiceHarness& h) {
   return out;
 }
 
-// Claims the next job as a fake pool.
-v1::ClaimResponse claim(ServiceHarness& h, const std::string& pool = "test-pool") {
-  v1::ClaimRequest req;
-  req.set_pool_id(pool);
-  req.set_ranks(2);
-  req.set_wait_seconds(5);
-  v1::ClaimResponse resp;
-  const auto status = h.workers().Claim(h.context(20s).get(), req, &resp);
-  EXPECT_TRUE(status.ok()) << status.error_message();
-  return resp;
-}
-
 // Writes a result file into the attempt directory and returns its manifest entry.
 v1::ResultFile write_result(const v1::ClaimResponse& c, const std::string& name,
                             const std::string& content) {
@@ -122,7 +110,7 @@ TEST(ServiceApi, ANewDatabaseIsNotGivenAnotherDatabasesResults) {
   ServiceHarness h;
   h.start_server();
   h.submit_text(small_case());
-  claim(h);  // the attempt folder results/job-1/1
+  h.claim();  // the attempt folder results/job-1/1
   auto fresh = Process::spawn({SPHD_SERVER_BIN, "--address", "127.0.0.1:0", "--db",
                                h.dir() + "/fresh.db", "--results", h.dir() + "/results"},
                               h.dir() + "/fresh.log");
@@ -183,7 +171,7 @@ TEST(ServiceApi, ALargeCaseReachesItsPoolAndATooLargeOneIsRejectedNamingCaseText
   };
   const v1::Job big = h.submit_text(with_points(350000));
   EXPECT_EQ(big.state(), v1::JOB_STATE_QUEUED);
-  const v1::ClaimResponse c = claim(h);
+  const v1::ClaimResponse c = h.claim();
   EXPECT_EQ(c.job_id(), big.id());
   std::printf("a case of 350000 points is %zu bytes as claimed\n", c.case_text().size());
   EXPECT_GT(c.case_text().size(), 20u << 20);
@@ -293,7 +281,7 @@ TEST(ServiceApi, StaleWorkerIsRefusedAndTheNextAttemptResumesFromItsCheckpoint) 
   ServiceHarness h;
   h.start_server(ServerSettings().lease(1));
   const auto job = h.submit_text(small_case());
-  const auto c1 = claim(h, "pool-1");
+  const auto c1 = h.claim("pool-1");
   ASSERT_EQ(c1.job_id(), job.id());
   fs::create_directories(c1.output_dir() + "/checkpoints");
   const std::string cp = c1.output_dir() + "/checkpoints/ckpt_000000000042.h5";
@@ -316,7 +304,7 @@ TEST(ServiceApi, StaleWorkerIsRefusedAndTheNextAttemptResumesFromItsCheckpoint) 
 
   // pool-1 goes silent; the lease (1 s) runs out and the job is queued again.
   ASSERT_TRUE(h.wait_for_state(job.id(), v1::JOB_STATE_QUEUED, 10s)) << h.logs();
-  const auto c2 = claim(h, "pool-2");
+  const auto c2 = h.claim("pool-2");
   EXPECT_EQ(c2.attempt(), 2);
   EXPECT_EQ(c2.resume_from(), cp);
 
@@ -337,7 +325,7 @@ TEST(ServiceApi, FetchServesOnlyTheResultManifest) {
   ServiceHarness h;
   h.start_server();
   const auto job = h.submit_text(small_case());
-  const auto c = claim(h);
+  const auto c = h.claim();
   const auto h5 = write_result(c, "result.h5", std::string(3 << 20, 'x') + "end");  // > 1 chunk
   const auto xmf = write_result(c, "result.xmf", "<Xdmf/>");
   write_result(c, "checkpoints/ckpt_1.h5", "not part of the result");
@@ -388,7 +376,7 @@ TEST(ServiceApi, DeletingAFinishedJobsFilesFreesItsDiskAndKeepsItsRecord) {
   ServiceHarness h;
   h.start_server();
   const auto job = h.submit_text(small_case());
-  const auto c = claim(h);
+  const auto c = h.claim();
   const auto h5 = write_result(c, "result.h5", std::string(100000, 'x'));
   const auto xmf = write_result(c, "result.xmf", "<Xdmf/>");
   write_result(c, "checkpoints/ckpt_1.h5", std::string(5000, 'c'));
@@ -451,7 +439,7 @@ TEST(ServiceApi, WatchResumesFromASequenceAndEndsWithTheJob) {
   ServiceHarness h;
   h.start_server();
   const auto job = h.submit_text(small_case());
-  const auto c = claim(h);
+  const auto c = h.claim();
   // A watcher that joins now sees QUEUED and RUNNING, then what follows live.
   v1::WatchJobRequest req;
   req.set_job_id(job.id());
@@ -502,7 +490,7 @@ TEST(ServiceApi, SigtermEndsOpenStreamsAndLongPollsPromptly) {
   // A long grace period: ending well before it shows the streams were ended, not cut off.
   h.start_server(ServerSettings().grace(30));
   const auto job = h.submit_text(small_case());
-  claim(h);  // the job runs: a watcher waits for more
+  h.claim();  // the job runs: a watcher waits for more
   std::atomic<int> watch_code{-1}, claim_code{-1};
   std::thread watcher([&] {
     v1::WatchJobRequest req;
@@ -540,7 +528,7 @@ TEST(ServiceApi, ClaimWakesUpWhenAJobIsSubmitted) {
   ServiceHarness h;
   h.start_server();
   std::string claimed;
-  std::thread poller([&] { claimed = claim(h).job_id(); });
+  std::thread poller([&] { claimed = h.claim().job_id(); });
   std::this_thread::sleep_for(300ms);
   const auto t0 = std::chrono::steady_clock::now();
   const auto job = h.submit_text(small_case());

@@ -29,17 +29,6 @@ std::string small_case() {
   return read_test_case("channel_2d.textproto");
 }
 
-v1::ClaimResponse claim(ServiceHarness& h) {
-  v1::ClaimRequest req;
-  req.set_pool_id("hardening-pool");
-  req.set_ranks(1);
-  req.set_wait_seconds(5);
-  v1::ClaimResponse resp;
-  const auto status = h.workers().Claim(h.context(20s).get(), req, &resp);
-  EXPECT_TRUE(status.ok()) << status.error_message();
-  return resp;
-}
-
 // Sends `bytes` as the request of `method` ("/sph.v1.JobService/Submit") and returns the
 // status; for a server-streaming method the stream is read to its end.
 grpc::Status call_raw(ServiceHarness& h, const std::string& method, const std::string& bytes) {
@@ -154,7 +143,7 @@ TEST(ServiceHardening, WorkerCallsResolveTheJobBeforeAnyPath) {
   ServiceHarness h;
   h.start_server();
   h.submit_text(small_case());
-  const auto c = claim(h);
+  const auto c = h.claim("hardening-pool", 1);
   ASSERT_EQ(c.job_id(), "job-1");
   // A file outside the results directory, of a size a probe would look for.
   const fs::path outside = fs::path(h.dir()) / "outside";

@@ -420,11 +420,7 @@ TEST(ServiceStreams, ManyFetchesAtOnceStreamTheResultByteForByte) {
   StreamServer s = start_server(h, {});
   const std::string job = submit(s, "fetched");
   // Finished as a fake pool would: a result in the attempt directory and its manifest.
-  v1::ClaimRequest claim_req;
-  claim_req.set_pool_id("test-pool");
-  claim_req.set_ranks(1);
-  v1::ClaimResponse claim;
-  ASSERT_TRUE(s.workers->Claim(context().get(), claim_req, &claim).ok());
+  const v1::ClaimResponse claim = claim_next_job(*s.workers, *context(), "test-pool", 1);
   ASSERT_EQ(claim.job_id(), job);
   std::string h5((3 << 20) + 12345, '\0');  // four chunks, the last one short
   std::mt19937 random(41);

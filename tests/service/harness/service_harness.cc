@@ -142,6 +142,22 @@ CommandResult ServiceHarness::sphctl(const std::vector<std::string>& args,
   return run_command(argv, dir_, timeout);
 }
 
+v1::ClaimResponse ServiceHarness::claim(const std::string& pool, int ranks) {
+  return claim_next_job(*workers_, *context(20s), pool, ranks);
+}
+
+v1::ClaimResponse claim_next_job(v1::WorkerService::Stub& workers, grpc::ClientContext& context,
+                                 const std::string& pool, int ranks) {
+  v1::ClaimRequest req;
+  req.set_pool_id(pool);
+  req.set_ranks(ranks);
+  req.set_wait_seconds(5);
+  v1::ClaimResponse resp;
+  const auto status = workers.Claim(&context, req, &resp);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  return resp;
+}
+
 v1::Job ServiceHarness::get_job(const std::string& id) {
   v1::GetJobRequest req;
   req.set_job_id(id);

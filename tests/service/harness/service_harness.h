@@ -73,6 +73,9 @@ class ServiceHarness {
   // A call context with the token and a deadline.
   std::unique_ptr<grpc::ClientContext> context(std::chrono::milliseconds timeout = 10s) const;
 
+  // Claims the next job as a fake pool (claim_next_job with this server and context(20s)).
+  v1::ClaimResponse claim(const std::string& pool = "test-pool", int ranks = 2);
+
   v1::Job get_job(const std::string& id);
   // Polls until the job is in `state`; false on timeout.
   bool wait_for_state(const std::string& id, v1::JobState state, std::chrono::milliseconds timeout);
@@ -112,6 +115,11 @@ class ServiceHarness {
   std::unique_ptr<v1::JobService::Stub> jobs_;
   std::unique_ptr<v1::WorkerService::Stub> workers_;
 };
+
+// Claims the next job as a fake pool `pool` of `ranks` ranks, waiting up to 5 s for one; a
+// failed call fails the test and returns an empty response (no job).
+v1::ClaimResponse claim_next_job(v1::WorkerService::Stub& workers, grpc::ClientContext& context,
+                                 const std::string& pool, int ranks);
 
 // Test inputs.
 std::string test_case_path(const std::string& name);  // tests/service/cases/NAME
