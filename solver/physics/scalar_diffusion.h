@@ -81,13 +81,15 @@ inline constexpr double kMirrorLimit = 3.0;
 template <int D>
 class ScalarDiffusion {
  public:
-  // `name`: the particle column ("temperature" or "concentration"); materials indexed like
-  // the particles' material; wall_values[k]: schedule of wall k (absent = insulated).
+  // `name`: the particle column ("temperature" or "concentration"), owned by the unit
+  // `owner`; materials indexed like the particles' material; wall_values[k]: schedule of
+  // wall k (absent = insulated).
   ScalarDiffusion(ParticleStore<D>& s, const std::string& name, std::vector<DiffusionMaterial> mats,
                   std::vector<std::optional<TimeFunction>> wall_values,
-                  std::vector<int> wall_material, double wall_volume, double source_per_volume)
+                  std::vector<int> wall_material, double wall_volume, double source_per_volume,
+                  const std::string& owner)
       : s_(s),
-        value_(s.template add<double>(name, name, true)),
+        value_(s.template add<double>(name, owner, true)),
         mats_(std::move(mats)),
         walls_(std::move(wall_values)),
         wall_material_(std::move(wall_material)),

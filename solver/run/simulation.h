@@ -1,13 +1,18 @@
 #pragma once
 // One simulation run: builds the scene and the physics units a case calls for, then advances
-// it with kick-drift-kick steps until the end time, writing results, checkpoints and progress.
-// Templated on dimension and kernel so the pair loops inline the kernel.
+// it with kick-drift-kick steps until the end time. Templated on dimension and kernel so the
+// pair loops inline the kernel.
 //
-// A step (Fuchs 2021 "Time integration"; Adami 2012 sec. 3.3):
-//   kick u^{n+1/2}, [transport velocity], drift r^{n+1}, prescribed wall motion,
-//   migrate + ghosts, neighbour lists, density (summation or continuity) + EOS, ghost rho/p,
-//   wall condition (Adami 2012 eqs. 22-28), ghost wall values, forces a^{n+1}, kick u^{n+1}.
+// The step is written down once, with its equations, in solver/seam/step_phase.h: the built-in
+// stages (neighbour search, density and EOS, the wall condition, fluid forces, rigid bodies
+// and contact, open boundaries, phase transitions) run in that order, and the units on the
+// seam (solver/seam/unit.h; heat, species, surface tension, ...) run at the phases they name.
 // Each unit appears only if the case needs it; unit_seconds() reports what ran and its time.
+// The implementation is split by concern:
+//   simulation_impl.h         run, start, step, integrate_step: the step loop;
+//   simulation_wiring_impl.h  the case wired into units and particles (unit_set.cc: seam units);
+//   simulation_search_impl.h  migration, ghosts, neighbour lists, load balancing;
+//   simulation_series_impl.h  every result series; run_recorder.h writes the files.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -46,7 +51,6 @@
 #include "solver/physics/equation_of_state.h"
 #include "solver/physics/fluid_forces.h"
 #include "solver/physics/fluid_table.h"
-#include "solver/physics/scalar_diffusion.h"
 #include "solver/physics/wall_boundary.h"
 #include "solver/physics/wall_motion.h"
 #include "solver/run/code_version.h"
@@ -137,18 +141,8 @@ class Simulation {
   void compute_fluid_forces();
   void move_bodies(double dt);
   void migrate();
-  void build_transport_units();
-  void transport_scalars(double dt);
-  void set_wall_scalars(double t);
-  void sample_scalars();
-  double initial_scalar(const SceneParticle& p, bool temperature) const;
   // Rigid particles need all their neighbours when they conduct or diffuse.
-  bool rigid_all() const { return heat_.has_value() || concentration_.has_value(); }
-  // The wall index column, or an empty one for cases without walls.
-  const Column<std::uint16_t>* wall_index_or_empty() const {
-    return wall_index_ ? wall_index_ : &no_walls_;
-  }
-  Column<std::uint16_t> no_walls_{"wall_index", "walls", false};
+  bool rigid_all() const { return temperature_ || concentration_; }
   void sample_bodies();
   std::string integrate_step(double dt);  // non-empty: why the run cannot go on
   // Contact sub-steps the coming step of length dt needs (1 when bodies cannot touch); step()
@@ -203,8 +197,10 @@ class Simulation {
   std::optional<FluidForces<D, K>> forces_;
   std::optional<BodyForce<D>> body_;
   std::optional<RigidBodies<D>> bodies_;
-  std::optional<ScalarDiffusion<D>> heat_;           // Fuchs 2021 eq. 28
-  std::optional<ScalarDiffusion<D>> concentration_;  // Fuchs 2021 Remark 4
+  // Columns of the heat conduction and species diffusion units (solver/physics/
+  // scalar_transport.h), which phase transitions and open boundaries read and set.
+  Column<double>* temperature_ = nullptr;
+  Column<double>* concentration_ = nullptr;
   Column<std::uint16_t>* wall_index_ = nullptr;
   std::optional<SpringDashpotContact<D>> contact_;
   std::optional<PhaseTransitions<D>> phase_;  // Fuchs 2021 eq. 29

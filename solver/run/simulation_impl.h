@@ -64,340 +64,82 @@ Simulation<D, K>::Simulation(const v1::Case& c, const Comm& comm, const RunOptio
 }
 
 template <int D, class K>
-Vec<D> Simulation<D, K>::fluid_body_force(double t) const {
-  return body_ ? body_->at(t) : Vec<D>::Zero();
-}
-
-template <int D, class K>
-std::string Simulation<D, K>::apply_phase_transitions() {
-  if (!phase_) return {};
-  typename PhaseTransitions<D>::Outcome out;
-  {
-    Timer tm(timer(PhaseTransitions<D>::kName));
-    out = phase_->run(s_, nl_, *bodies_, heat_ ? &heat_->values() : nullptr,
-                      concentration_ ? &concentration_->values() : nullptr, transport_,
-                      fluid_body_force(t_), step_, comm_);
-  }
-  if (!out.error.empty()) {
-    char buf[120];
-    std::snprintf(buf, sizeof buf, " at step %lld, t = %.9g", static_cast<long long>(step_), t_);
-    return out.error + buf;
-  }
-  if (out.melted + out.solidified > 0) {  // all ranks: the counts are global
-    // Particles changed kind and body after this step's search: the ghosts and the contact
-    // candidates are those of before (a melted particle would push its old neighbours as a
-    // wall, a merged body would keep contacts within itself), so refresh the ghosts and sort
-    // the candidates again by kind (search again, without a skin), and evaluate the rebuilt
-    // bodies' contact forces for the next step's first contact kick.
-    exchange_and_search(Search::kKindsChanged);
-    if (contact_) {
-      Timer tc(timer(SpringDashpotContact<D>::kName));
-      contact_->refresh(nl_, comm_);
+RunOutcome Simulation<D, K>::run() {
+  RunOutcome out;
+  start();
+  report_progress(true);
+  RunStatus status = RunStatus::kCompleted;
+  std::string message;
+  const double steady = c_.stop().steady_kinetic_energy();
+  while (true) {
+    if (schedule_.finished(t_)) break;
+    if (c_.time().max_steps() > 0 && step_ >= c_.time().max_steps()) {
+      if (!last_step_had_snapshot_) write_snapshot();
+      message = "time.max_steps reached";
+      break;
     }
-    bodies_->update_accelerations(t_);  // the rebuilt bodies' own forces
-  }
-  return {};
-}
-
-// `lost_` (summed over the ranks) names the bodies that lost particles at an outlet.
-template <int D, class K>
-std::string Simulation<D, K>::regroup_bodies_that_left() {
-  Timer tm(timer(RigidBodies<D>::kName));
-  std::string error = leaving_->run(s_, *bodies_, lost_, comm_);
-  if (!error.empty()) {
-    char buf[120];
-    std::snprintf(buf, sizeof buf, " at step %lld, t = %.9g", static_cast<long long>(step_), t_);
-    return error + buf;
-  }
-  return {};
-}
-
-// Buffer pressures from the fluid's, then the ghosts' copies.
-template <int D, class K>
-void Simulation<D, K>::set_open_boundary_pressure() {
-  {
-    Timer tm(timer(OpenBoundaries<D, K>::kName));
-    open_->set_pressure(nl_, grid_, halo_.my_box(), fluid_body_force(t_), comm_);
-  }
-  Timer tm(timer("halo_exchange"));
-  halo_.update(s_, {&s_.rho, &s_.p});
-}
-
-template <int D, class K>
-void Simulation<D, K>::apply_open_boundaries_after_forces() {
-  Timer tm(timer(OpenBoundaries<D, K>::kName));
-  open_->after_forces(nl_, grid_, halo_.my_box(), walls_ ? &walls_->noslip_velocity() : nullptr,
-                      free_slip_, background_, heat_ ? &heat_->values() : nullptr,
-                      concentration_ ? &concentration_->values() : nullptr, comm_);
-}
-
-template <int D, class K>
-void Simulation<D, K>::set_wall_scalars(double t) {
-  if (!wall_index_) return;
-  if (heat_) heat_->set_wall_values(t, *wall_index_);
-  if (concentration_) concentration_->set_wall_values(t, *wall_index_);
-}
-
-template <int D, class K>
-void Simulation<D, K>::transport_scalars(double dt) {
-  if (dt <= 0) return;
-  for (ScalarDiffusion<D>* unit :
-       {heat_ ? &*heat_ : nullptr, concentration_ ? &*concentration_ : nullptr}) {
-    if (!unit) continue;
-    Timer tm(
-        timer(unit == (heat_ ? &*heat_ : nullptr) ? "heat_conduction" : "concentration_diffusion"));
-    if (unit->has_dirichlet_walls()) {
-      // The mirror values use this step's fluid values at the new positions.
-      unit->extrapolate_walls(nl_, pk_, t_, *wall_index_);
-      Timer th(timer("halo_exchange"));
-      halo_.update(s_, {&unit->values()});
+    const StepReport e = step();
+    if (e.violated) {
+      status = RunStatus::kUnstable;
+      message = e.diagnosis;
+      break;
     }
-    unit->run(nl_, pk_, dt, *wall_index_or_empty());
-  }
-}
-
-template <int D, class K>
-void Simulation<D, K>::compute_density_and_pressure(double dt) {
-  if (summation_) {
-    Timer tm(timer(DensitySummation<D, K>::kName));
-    summation_->run(nl_, pk_);
-  } else if (continuity_ && dt > 0) {
-    Timer tm(timer(ContinuityDensity<D, K>::kName));
-    continuity_->run(nl_, dt);
-  }
-  {
-    Timer tm(timer("equation_of_state"));
-    apply_equation_of_state(s_, fluids_);
-  }
-  {
-    Timer tm(timer("halo_exchange"));
-    halo_.update(s_, {&s_.rho, &s_.p});
-  }
-  if (open_) set_open_boundary_pressure();
-  run_phase(StepPhase::kDensity);
-}
-
-template <int D, class K>
-void Simulation<D, K>::apply_wall_condition() {
-  if (walls_) apply_wall_values();
-  run_phase(StepPhase::kWallState);
-}
-
-template <int D, class K>
-void Simulation<D, K>::apply_wall_values() {
-  {
-    Timer tm(timer(WallBoundary<D>::kName));
-    walls_->run(
-        nl_, pk_, fluid_body_force(t_),
-        s_.has("wall_acceleration") ? &s_.template get<Vec<D>>("wall_acceleration") : nullptr);
-  }
-  Timer tm(timer("halo_exchange"));
-  if (walls_->second_pressure())
-    halo_.update(s_, {&s_.rho, &s_.p, &walls_->noslip_velocity(), &walls_->fluid_material(),
-                      walls_->second_pressure(), walls_->second_fluid_material()});
-  else
-    halo_.update(s_, {&s_.rho, &s_.p, &walls_->noslip_velocity(), &walls_->fluid_material()});
-}
-
-template <int D, class K>
-void Simulation<D, K>::compute_forces() {
-  {
-    // Forces accumulate: a^{n+1} starts at zero and every force unit adds to it.
-    Timer tm(timer("integrate"));
-    std::fill(s_.a.data(), s_.a.data() + s_.owned(), Vec<D>::Zero());
-  }
-  compute_fluid_forces();
-  run_phase(StepPhase::kForces);
-}
-
-template <int D, class K>
-void Simulation<D, K>::compute_fluid_forces() {
-  Timer tm(timer("fluid_forces"));
-  FluidForceInputs<D> in;
-  in.fluids = &fluids_;
-  in.pairs = &pk_;
-  in.body = fluid_body_force(t_);
-  in.wall_volume = wall_volume_;
-  in.h = h_;
-  in.alpha = c_.fluid_model().artificial_viscosity();
-  if (walls_) {
-    in.noslip = &walls_->noslip_velocity();
-    in.wall_fluid = &walls_->fluid_material();
-    in.wall_p2 = walls_->second_pressure();
-    in.wall_fluid2 = walls_->second_fluid_material();
-  }
-  in.free_slip = free_slip_;
-  in.transport = transport_;
-  in.background = background_;
-  forces_->run(s_, nl_, kernel_, in);
-  if (bodies_) {
-    Timer tc(timer("rigid_coupling"));
-    in.rigid_force = &bodies_->fluid_force();
-    forces_->run_coupling(s_, nl_, kernel_, in);
-    bodies_->reduce_fluid_forces(comm_);
-  }
-}
-
-template <int D, class K>
-void Simulation<D, K>::move_bodies(double dt) {
-  Timer tm(timer(RigidBodies<D>::kName));
-  if (contact_) {
-    Timer tc(timer(SpringDashpotContact<D>::kName));
-    // Substep only when bodies may touch during this step; otherwise one drift.
-    contact_->drift(nl_, dt, substeps_, t_ + dt, comm_);
-  } else {
-    bodies_->drift(dt, t_ + dt);
-  }
-  bodies_->place_owned_particles();
-}
-
-template <int D, class K>
-void Simulation<D, K>::prime() {
-  if (wall_motion_) {
-    Timer tm(timer(WallMotion<D>::kName));
-    wall_motion_->run(t_, transport_);
-  }
-  if (bodies_) bodies_->place_owned_particles();
-  set_wall_scalars(t_);
-  step_dt_ = 0;
-  exchange_and_search();
-  run_phase(StepPhase::kAfterSearch);
-  compute_density_and_pressure(0.0);
-  apply_wall_condition();
-  compute_forces();
-  if (open_) apply_open_boundaries_after_forces();
-  run_phase(StepPhase::kConstraints);
-  if (bodies_) {
-    if (contact_) {
-      contact_->drift(nl_, 0.0, 1, t_, comm_);  // evaluates the initial contact forces
-      contact_possible_ = comm_.min(nl_.min_contact_distance()) < 1.1 * dx_;
+    // Sampled on schedule and at the end, so the series end where the run does.
+    if (t_ >= next_series_ - schedule_.eps() || schedule_.finished(t_)) sample_series();
+    last_step_had_snapshot_ = false;
+    if (schedule_.snapshot_due(t_, next_output_)) {
+      write_snapshot();
+      last_step_had_snapshot_ = true;
+      next_output_ = schedule_.first_after(t_);
     }
-    bodies_->update_accelerations(t_);
-  }
-}
-
-template <int D, class K>
-std::string Simulation<D, K>::integrate_step(double dt) {
-  step_dt_ = dt;
-  {
-    Timer tm(timer("integrate"));
-    kick(s_, 0.5 * dt);
-    if (transport_) set_transport_velocity(s_, *transport_, *background_, 0.5 * dt);
-    drift(s_, transport_ ? *transport_ : s_.v, dt);
-  }
-  if (bodies_) {
-    bodies_->kick(0.5 * dt, t_);  // Fuchs 2021 eq. 31
-    move_bodies(dt);              // eqs. 33-36, contact substeps
-  }
-  t_ += dt;
-  ++step_;
-  if (wall_motion_) {
-    Timer tm(timer(WallMotion<D>::kName));
-    wall_motion_->run(t_, transport_);
-  }
-  set_wall_scalars(t_);
-  bool bodies_left = false;
-  if (open_) {
-    {
-      Timer tm(timer(OpenBoundaries<D, K>::kName));
-      // Inflows refill, outflows delete (fluid, and the parts of bodies carried out).
-      if (leaving_) lost_.assign(bodies_->bodies().size(), 0);
-      global_particles_ +=
-          open_->exchange_particles(t_, transport_, comm_, leaving_ ? &*bodies_ : nullptr, &lost_);
+    report_progress(false);
+    if (e.interrupt) {
+      write_checkpoint_now();
+      status = RunStatus::kInterrupted;
+      message = "interrupted; checkpoint written";
+      break;
     }
-    if (leaving_) {
-      bodies_left = std::any_of(lost_.begin(), lost_.end(), [](std::int64_t n) { return n > 0; });
-      if (bodies_left)
-        if (std::string why = regroup_bodies_that_left(); !why.empty()) return why;
+    if (e.cancel) {
+      if (!last_step_had_snapshot_) write_snapshot();
+      status = RunStatus::kCancelled;
+      message = "cancelled at a step boundary; last state written";
+      break;
     }
-  }
-  exchange_and_search(Search::kAsNeeded);
-  if (bodies_left && contact_) {
-    // As after a phase transition: the rebuilt bodies' contact forces for the next step.
-    Timer tc(timer(SpringDashpotContact<D>::kName));
-    contact_->refresh(nl_, comm_);
-  }
-  run_phase(StepPhase::kAfterSearch);
-  compute_density_and_pressure(dt);
-  apply_wall_condition();
-  transport_scalars(dt);  // Fuchs 2021 eq. 37: rates from T^n at r^{n+1}, rho^{n+1}
-  compute_forces();
-  if (open_) apply_open_boundaries_after_forces();
-  run_phase(StepPhase::kConstraints);
-  {
-    Timer tm(timer("integrate"));
-    kick(s_, 0.5 * dt);
-    if (bodies_) {
-      bodies_->kick(0.5 * dt, t_);  // eq. 39
-      bodies_->update_accelerations(t_);
-      bodies_->update_owned_velocities();  // eq. 40
+    if (e.checkpoint) write_checkpoint_now();
+    if (e.out_of_time) {
+      if (!last_step_had_snapshot_) write_snapshot();
+      message = "stop.max_wall_seconds reached";
+      break;
     }
-  }
-  run_phase(StepPhase::kEndOfStep);
-  return {};
-}
-
-template <int D, class K>
-typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
-  Timer tm(timer("stability_guards"));
-  const auto vmax_dom = detail::to_vec<D>(c_.domain().hi());
-  const auto vmin_dom = detail::to_vec<D>(c_.domain().lo());
-  GuardScan<D> scan =
-      scan_particles<D>(s_, fluids_, mats_, guards_, vmin_dom, vmax_dom, grid_.periodic, step_, t_);
-  // Temperature and concentration are state too: an explicit diffusion step past its bound
-  // (Fuchs 2021 eq. 41) overflows them while the flow is still sound.
-  for (ScalarDiffusion<D>* unit :
-       {heat_ ? &*heat_ : nullptr, concentration_ ? &*concentration_ : nullptr}) {
-    if (!unit || !scan.violation.empty()) continue;
-    for (std::size_t i = 0; i < s_.owned(); ++i)
-      if (s_.kind[i] != Kind::kWall && !std::isfinite(unit->values()[i])) {
-        scan.violation = "non-finite " + unit->name() + describe_particle(s_, mats_, i, step_, t_);
+    if (steady > 0 && step_ % 20 == 0) {
+      const Vec<D> g = Vec<D>::Zero();
+      const ConservationSample<D> cs = conservation(s_, fluids_, g, comm_);
+      if (cs.mass > 0 && cs.kinetic / cs.mass < steady) {
+        if (!last_step_had_snapshot_) write_snapshot();
+        message = "steady state reached (stop.steady_kinetic_energy)";
         break;
       }
-  }
-  SolidFractionScan solid;
-  if (walls_) {
-    solid = scan_solid_fraction();
-    if (scan.violation.empty() && solid.max > guards_.max_solid_fraction) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf,
-                    "fluid inside a wall or body: solid fraction %.3f of its kernel support "
-                    "exceeds %.3g (guards.max_solid_fraction)",
-                    solid.max, guards_.max_solid_fraction);
-      scan.violation = buf + describe_particle(s_, mats_, solid.worst, step_, t_);
     }
   }
-  std::vector<double> r = {
-      scan.max_speed,
-      scan.max_acceleration,
-      scan.max_density_dev,
-      scan.violation.empty() ? 0.0 : 1.0,
-      comm_.root() && opt_.cancel_requested && opt_.cancel_requested() ? 1.0 : 0.0,
-      opt_.interrupt && opt_.interrupt->load() ? 1.0 : 0.0,
-      comm_.root() && recorder_.checkpoint_due(c_.output().checkpoint_wall_interval()) ? 1.0 : 0.0,
-      comm_.root() && c_.stop().max_wall_seconds() > 0 &&
-              recorder_.wall_seconds() >= c_.stop().max_wall_seconds()
-          ? 1.0
-          : 0.0,
-      -nl_.min_contact_distance(),
-      solid.max};
-  const double t0 = MPI_Wtime();
-  comm_.max_inplace(r);
-  comm_seconds_ += MPI_Wtime() - t0;
-  EndOfStep e;
-  e.max_speed = r[0];
-  e.max_acceleration = r[1];
-  e.max_density_dev = r[2];
-  e.violated = r[3] > 0;
-  e.cancel = r[4] > 0;
-  e.interrupt = r[5] > 0;
-  e.checkpoint = r[6] > 0;
-  e.out_of_time = r[7] > 0;
-  e.min_contact_distance = -r[8];
-  solid_fraction_ = r[9];
-  min_contact_distance_ = e.min_contact_distance;
-  if (e.violated) e.diagnosis = comm_.first_non_empty(scan.violation);
-  return e;
+  report_progress(true);
+  const char* st = status == RunStatus::kCompleted     ? "completed"
+                   : status == RunStatus::kCancelled   ? "cancelled"
+                   : status == RunStatus::kInterrupted ? "interrupted"
+                                                       : "unstable";
+  const std::map<std::string, double> bytes =
+      recorder_.finish(st, message, timers_, memory_by_owner(), searches_);
+  out.unit_bytes = bytes;
+  out.status = status;
+  out.message = message;
+  out.steps = step_;
+  out.time = t_;
+  out.wall_seconds = recorder_.wall_seconds();
+  out.unit_seconds = timers_;
+  out.neighbor_searches = searches_;
+  out.last_checkpoint = recorder_.last_checkpoint();
+  out.files = {std::filesystem::absolute(recorder_.result().h5_path()).string(),
+               std::filesystem::absolute(recorder_.result().xmf_path()).string()};
+  return out;
 }
 
 template <int D, class K>
@@ -498,17 +240,28 @@ void Simulation<D, K>::start() {
 }
 
 template <int D, class K>
-SolidFractionScan Simulation<D, K>::scan_solid_fraction() {
-  return solid_fraction<D>(s_, nl_, pk_, wall_volume_, wall_index_ ? wall_index_->data() : nullptr,
-                           bodies_ ? bodies_->body_index().data() : nullptr);
-}
-
-template <int D, class K>
-int Simulation<D, K>::contact_substeps(double dt) const {
-  if (!contact_ || !contact_possible_) return 1;
-  const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
-  const double n = std::ceil(dt / (factor * contact_->time_step(min_rigid_mass_)));
-  return n > 2e9 ? std::numeric_limits<int>::max() : std::max(1, static_cast<int>(n));
+void Simulation<D, K>::prime() {
+  if (wall_motion_) {
+    Timer tm(timer(WallMotion<D>::kName));
+    wall_motion_->run(t_, transport_);
+  }
+  if (bodies_) bodies_->place_owned_particles();
+  run_phase(StepPhase::kAfterDrift);  // prescribed wall values of t
+  step_dt_ = 0;
+  exchange_and_search();
+  run_phase(StepPhase::kAfterSearch);
+  compute_density_and_pressure(0.0);
+  apply_wall_condition();
+  compute_forces();
+  if (open_) apply_open_boundaries_after_forces();
+  run_phase(StepPhase::kConstraints);
+  if (bodies_) {
+    if (contact_) {
+      contact_->drift(nl_, 0.0, 1, t_, comm_);  // evaluates the initial contact forces
+      contact_possible_ = comm_.min(nl_.min_contact_distance()) < 1.1 * dx_;
+    }
+    bodies_->update_accelerations(t_);
+  }
 }
 
 template <int D, class K>
@@ -560,82 +313,296 @@ typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
 }
 
 template <int D, class K>
-RunOutcome Simulation<D, K>::run() {
-  RunOutcome out;
-  start();
-  report_progress(true);
-  RunStatus status = RunStatus::kCompleted;
-  std::string message;
-  const double steady = c_.stop().steady_kinetic_energy();
-  while (true) {
-    if (schedule_.finished(t_)) break;
-    if (c_.time().max_steps() > 0 && step_ >= c_.time().max_steps()) {
-      if (!last_step_had_snapshot_) write_snapshot();
-      message = "time.max_steps reached";
-      break;
+std::string Simulation<D, K>::integrate_step(double dt) {
+  step_dt_ = dt;
+  {
+    Timer tm(timer("integrate"));
+    kick(s_, 0.5 * dt);
+    if (transport_) set_transport_velocity(s_, *transport_, *background_, 0.5 * dt);
+    drift(s_, transport_ ? *transport_ : s_.v, dt);
+  }
+  if (bodies_) {
+    bodies_->kick(0.5 * dt, t_);  // Fuchs 2021 eq. 31
+    move_bodies(dt);              // eqs. 33-36, contact substeps
+  }
+  t_ += dt;
+  ++step_;
+  if (wall_motion_) {
+    Timer tm(timer(WallMotion<D>::kName));
+    wall_motion_->run(t_, transport_);
+  }
+  run_phase(StepPhase::kAfterDrift);  // prescribed wall values of t
+  bool bodies_left = false;
+  if (open_) {
+    {
+      Timer tm(timer(OpenBoundaries<D, K>::kName));
+      // Inflows refill, outflows delete (fluid, and the parts of bodies carried out).
+      if (leaving_) lost_.assign(bodies_->bodies().size(), 0);
+      global_particles_ +=
+          open_->exchange_particles(t_, transport_, comm_, leaving_ ? &*bodies_ : nullptr, &lost_);
     }
-    const StepReport e = step();
-    if (e.violated) {
-      status = RunStatus::kUnstable;
-      message = e.diagnosis;
-      break;
-    }
-    // Sampled on schedule and at the end, so the series end where the run does.
-    if (t_ >= next_series_ - schedule_.eps() || schedule_.finished(t_)) sample_series();
-    last_step_had_snapshot_ = false;
-    if (schedule_.snapshot_due(t_, next_output_)) {
-      write_snapshot();
-      last_step_had_snapshot_ = true;
-      next_output_ = schedule_.first_after(t_);
-    }
-    report_progress(false);
-    if (e.interrupt) {
-      write_checkpoint_now();
-      status = RunStatus::kInterrupted;
-      message = "interrupted; checkpoint written";
-      break;
-    }
-    if (e.cancel) {
-      if (!last_step_had_snapshot_) write_snapshot();
-      status = RunStatus::kCancelled;
-      message = "cancelled at a step boundary; last state written";
-      break;
-    }
-    if (e.checkpoint) write_checkpoint_now();
-    if (e.out_of_time) {
-      if (!last_step_had_snapshot_) write_snapshot();
-      message = "stop.max_wall_seconds reached";
-      break;
-    }
-    if (steady > 0 && step_ % 20 == 0) {
-      const Vec<D> g = Vec<D>::Zero();
-      const ConservationSample<D> cs = conservation(s_, fluids_, g, comm_);
-      if (cs.mass > 0 && cs.kinetic / cs.mass < steady) {
-        if (!last_step_had_snapshot_) write_snapshot();
-        message = "steady state reached (stop.steady_kinetic_energy)";
-        break;
-      }
+    if (leaving_) {
+      bodies_left = std::any_of(lost_.begin(), lost_.end(), [](std::int64_t n) { return n > 0; });
+      if (bodies_left)
+        if (std::string why = regroup_bodies_that_left(); !why.empty()) return why;
     }
   }
-  report_progress(true);
-  const char* st = status == RunStatus::kCompleted     ? "completed"
-                   : status == RunStatus::kCancelled   ? "cancelled"
-                   : status == RunStatus::kInterrupted ? "interrupted"
-                                                       : "unstable";
-  const std::map<std::string, double> bytes =
-      recorder_.finish(st, message, timers_, memory_by_owner(), searches_);
-  out.unit_bytes = bytes;
-  out.status = status;
-  out.message = message;
-  out.steps = step_;
-  out.time = t_;
-  out.wall_seconds = recorder_.wall_seconds();
-  out.unit_seconds = timers_;
-  out.neighbor_searches = searches_;
-  out.last_checkpoint = recorder_.last_checkpoint();
-  out.files = {std::filesystem::absolute(recorder_.result().h5_path()).string(),
-               std::filesystem::absolute(recorder_.result().xmf_path()).string()};
-  return out;
+  exchange_and_search(Search::kAsNeeded);
+  if (bodies_left && contact_) {
+    // As after a phase transition: the rebuilt bodies' contact forces for the next step.
+    Timer tc(timer(SpringDashpotContact<D>::kName));
+    contact_->refresh(nl_, comm_);
+  }
+  run_phase(StepPhase::kAfterSearch);
+  compute_density_and_pressure(dt);
+  apply_wall_condition();
+  compute_forces();
+  if (open_) apply_open_boundaries_after_forces();
+  run_phase(StepPhase::kConstraints);
+  {
+    Timer tm(timer("integrate"));
+    kick(s_, 0.5 * dt);
+    if (bodies_) {
+      bodies_->kick(0.5 * dt, t_);  // eq. 39
+      bodies_->update_accelerations(t_);
+      bodies_->update_owned_velocities();  // eq. 40
+    }
+  }
+  run_phase(StepPhase::kEndOfStep);
+  return {};
+}
+
+template <int D, class K>
+void Simulation<D, K>::compute_density_and_pressure(double dt) {
+  if (summation_) {
+    Timer tm(timer(DensitySummation<D, K>::kName));
+    summation_->run(nl_, pk_);
+  } else if (continuity_ && dt > 0) {
+    Timer tm(timer(ContinuityDensity<D, K>::kName));
+    continuity_->run(nl_, dt);
+  }
+  {
+    Timer tm(timer("equation_of_state"));
+    apply_equation_of_state(s_, fluids_);
+  }
+  {
+    Timer tm(timer("halo_exchange"));
+    halo_.update(s_, {&s_.rho, &s_.p});
+  }
+  if (open_) set_open_boundary_pressure();
+  run_phase(StepPhase::kDensity);
+}
+
+template <int D, class K>
+void Simulation<D, K>::apply_wall_condition() {
+  if (walls_) apply_wall_values();
+  run_phase(StepPhase::kWallState);
+}
+
+template <int D, class K>
+void Simulation<D, K>::apply_wall_values() {
+  {
+    Timer tm(timer(WallBoundary<D>::kName));
+    walls_->run(
+        nl_, pk_, fluid_body_force(t_),
+        s_.has("wall_acceleration") ? &s_.template get<Vec<D>>("wall_acceleration") : nullptr);
+  }
+  Timer tm(timer("halo_exchange"));
+  if (walls_->second_pressure())
+    halo_.update(s_, {&s_.rho, &s_.p, &walls_->noslip_velocity(), &walls_->fluid_material(),
+                      walls_->second_pressure(), walls_->second_fluid_material()});
+  else
+    halo_.update(s_, {&s_.rho, &s_.p, &walls_->noslip_velocity(), &walls_->fluid_material()});
+}
+
+template <int D, class K>
+void Simulation<D, K>::compute_forces() {
+  {
+    // Forces accumulate: a^{n+1} starts at zero and every force unit adds to it.
+    Timer tm(timer("integrate"));
+    std::fill(s_.a.data(), s_.a.data() + s_.owned(), Vec<D>::Zero());
+  }
+  compute_fluid_forces();
+  run_phase(StepPhase::kForces);
+}
+
+template <int D, class K>
+void Simulation<D, K>::compute_fluid_forces() {
+  Timer tm(timer("fluid_forces"));
+  FluidForceInputs<D> in;
+  in.fluids = &fluids_;
+  in.pairs = &pk_;
+  in.body = fluid_body_force(t_);
+  in.wall_volume = wall_volume_;
+  in.h = h_;
+  in.alpha = c_.fluid_model().artificial_viscosity();
+  if (walls_) {
+    in.noslip = &walls_->noslip_velocity();
+    in.wall_fluid = &walls_->fluid_material();
+    in.wall_p2 = walls_->second_pressure();
+    in.wall_fluid2 = walls_->second_fluid_material();
+  }
+  in.free_slip = free_slip_;
+  in.transport = transport_;
+  in.background = background_;
+  forces_->run(s_, nl_, kernel_, in);
+  if (bodies_) {
+    Timer tc(timer("rigid_coupling"));
+    in.rigid_force = &bodies_->fluid_force();
+    forces_->run_coupling(s_, nl_, kernel_, in);
+    bodies_->reduce_fluid_forces(comm_);
+  }
+}
+
+template <int D, class K>
+void Simulation<D, K>::move_bodies(double dt) {
+  Timer tm(timer(RigidBodies<D>::kName));
+  if (contact_) {
+    Timer tc(timer(SpringDashpotContact<D>::kName));
+    // Substep only when bodies may touch during this step; otherwise one drift.
+    contact_->drift(nl_, dt, substeps_, t_ + dt, comm_);
+  } else {
+    bodies_->drift(dt, t_ + dt);
+  }
+  bodies_->place_owned_particles();
+}
+
+template <int D, class K>
+int Simulation<D, K>::contact_substeps(double dt) const {
+  if (!contact_ || !contact_possible_) return 1;
+  const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
+  const double n = std::ceil(dt / (factor * contact_->time_step(min_rigid_mass_)));
+  return n > 2e9 ? std::numeric_limits<int>::max() : std::max(1, static_cast<int>(n));
+}
+
+template <int D, class K>
+std::string Simulation<D, K>::apply_phase_transitions() {
+  if (!phase_) return {};
+  typename PhaseTransitions<D>::Outcome out;
+  {
+    Timer tm(timer(PhaseTransitions<D>::kName));
+    out = phase_->run(s_, nl_, *bodies_, temperature_, concentration_, transport_,
+                      fluid_body_force(t_), step_, comm_);
+  }
+  if (!out.error.empty()) {
+    char buf[120];
+    std::snprintf(buf, sizeof buf, " at step %lld, t = %.9g", static_cast<long long>(step_), t_);
+    return out.error + buf;
+  }
+  if (out.melted + out.solidified > 0) {  // all ranks: the counts are global
+    // Particles changed kind and body after this step's search: the ghosts and the contact
+    // candidates are those of before (a melted particle would push its old neighbours as a
+    // wall, a merged body would keep contacts within itself), so refresh the ghosts and sort
+    // the candidates again by kind (search again, without a skin), and evaluate the rebuilt
+    // bodies' contact forces for the next step's first contact kick.
+    exchange_and_search(Search::kKindsChanged);
+    if (contact_) {
+      Timer tc(timer(SpringDashpotContact<D>::kName));
+      contact_->refresh(nl_, comm_);
+    }
+    bodies_->update_accelerations(t_);  // the rebuilt bodies' own forces
+  }
+  return {};
+}
+
+// `lost_` (summed over the ranks) names the bodies that lost particles at an outlet.
+template <int D, class K>
+std::string Simulation<D, K>::regroup_bodies_that_left() {
+  Timer tm(timer(RigidBodies<D>::kName));
+  std::string error = leaving_->run(s_, *bodies_, lost_, comm_);
+  if (!error.empty()) {
+    char buf[120];
+    std::snprintf(buf, sizeof buf, " at step %lld, t = %.9g", static_cast<long long>(step_), t_);
+    return error + buf;
+  }
+  return {};
+}
+
+// Buffer pressures from the fluid's, then the ghosts' copies.
+template <int D, class K>
+void Simulation<D, K>::set_open_boundary_pressure() {
+  {
+    Timer tm(timer(OpenBoundaries<D, K>::kName));
+    open_->set_pressure(nl_, grid_, halo_.my_box(), fluid_body_force(t_), comm_);
+  }
+  Timer tm(timer("halo_exchange"));
+  halo_.update(s_, {&s_.rho, &s_.p});
+}
+
+template <int D, class K>
+void Simulation<D, K>::apply_open_boundaries_after_forces() {
+  Timer tm(timer(OpenBoundaries<D, K>::kName));
+  open_->after_forces(nl_, grid_, halo_.my_box(), walls_ ? &walls_->noslip_velocity() : nullptr,
+                      free_slip_, background_, temperature_, concentration_, comm_);
+}
+
+template <int D, class K>
+Vec<D> Simulation<D, K>::fluid_body_force(double t) const {
+  return body_ ? body_->at(t) : Vec<D>::Zero();
+}
+
+template <int D, class K>
+typename Simulation<D, K>::EndOfStep Simulation<D, K>::end_of_step_checks() {
+  Timer tm(timer("stability_guards"));
+  const auto vmax_dom = detail::to_vec<D>(c_.domain().hi());
+  const auto vmin_dom = detail::to_vec<D>(c_.domain().lo());
+  GuardScan<D> scan =
+      scan_particles<D>(s_, fluids_, mats_, guards_, vmin_dom, vmax_dom, grid_.periodic, step_, t_);
+  // The units' own guards (a scalar overflowing past its time-step bound, ...).
+  if (scan.violation.empty() && !unit_set_.empty()) {
+    const StepContext<D> ctx = context(step_dt_);
+    for (const auto& u : unit_set_.units())
+      if (scan.violation.empty()) scan.violation = u->check(ctx);
+  }
+  SolidFractionScan solid;
+  if (walls_) {
+    solid = scan_solid_fraction();
+    if (scan.violation.empty() && solid.max > guards_.max_solid_fraction) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "fluid inside a wall or body: solid fraction %.3f of its kernel support "
+                    "exceeds %.3g (guards.max_solid_fraction)",
+                    solid.max, guards_.max_solid_fraction);
+      scan.violation = buf + describe_particle(s_, mats_, solid.worst, step_, t_);
+    }
+  }
+  std::vector<double> r = {
+      scan.max_speed,
+      scan.max_acceleration,
+      scan.max_density_dev,
+      scan.violation.empty() ? 0.0 : 1.0,
+      comm_.root() && opt_.cancel_requested && opt_.cancel_requested() ? 1.0 : 0.0,
+      opt_.interrupt && opt_.interrupt->load() ? 1.0 : 0.0,
+      comm_.root() && recorder_.checkpoint_due(c_.output().checkpoint_wall_interval()) ? 1.0 : 0.0,
+      comm_.root() && c_.stop().max_wall_seconds() > 0 &&
+              recorder_.wall_seconds() >= c_.stop().max_wall_seconds()
+          ? 1.0
+          : 0.0,
+      -nl_.min_contact_distance(),
+      solid.max};
+  const double t0 = MPI_Wtime();
+  comm_.max_inplace(r);
+  comm_seconds_ += MPI_Wtime() - t0;
+  EndOfStep e;
+  e.max_speed = r[0];
+  e.max_acceleration = r[1];
+  e.max_density_dev = r[2];
+  e.violated = r[3] > 0;
+  e.cancel = r[4] > 0;
+  e.interrupt = r[5] > 0;
+  e.checkpoint = r[6] > 0;
+  e.out_of_time = r[7] > 0;
+  e.min_contact_distance = -r[8];
+  solid_fraction_ = r[9];
+  min_contact_distance_ = e.min_contact_distance;
+  if (e.violated) e.diagnosis = comm_.first_non_empty(scan.violation);
+  return e;
+}
+
+template <int D, class K>
+SolidFractionScan Simulation<D, K>::scan_solid_fraction() {
+  return solid_fraction<D>(s_, nl_, pk_, wall_volume_, wall_index_ ? wall_index_->data() : nullptr,
+                           bodies_ ? bodies_->body_index().data() : nullptr);
 }
 
 }  // namespace sph

@@ -6,34 +6,6 @@
 
 namespace sph {
 
-// Extremes and content (thermal energy sum m h(T), latent heat included; species mass sum m C)
-// of the scalars.
-template <int D, class K>
-void Simulation<D, K>::sample_scalars() {
-  for (int which = 0; which < 2; ++which) {
-    ScalarDiffusion<D>* unit =
-        which == 0 ? (heat_ ? &*heat_ : nullptr) : (concentration_ ? &*concentration_ : nullptr);
-    if (!unit) continue;
-    std::vector<double> ext = {-std::numeric_limits<double>::infinity(),
-                               -std::numeric_limits<double>::infinity()};
-    double content = 0;
-    for (std::size_t i = 0; i < s_.owned(); ++i) {
-      if (s_.kind[i] == Kind::kWall) continue;
-      const double v = unit->values()[i];
-      ext[0] = std::max(ext[0], -v);
-      ext[1] = std::max(ext[1], v);
-      content += s_.m[i] * unit->content(s_.material[i], v);
-    }
-    comm_.max_inplace(ext);
-    content = comm_.sum(content);
-    const std::string base = which == 0 ? "diagnostics/temperature_" : "diagnostics/concentration_";
-    recorder_.result().put(base + "min", -ext[0]);
-    recorder_.result().put(base + "max", ext[1]);
-    recorder_.result().put(which == 0 ? "diagnostics/thermal_energy" : "diagnostics/species_mass",
-                           content);
-  }
-}
-
 template <int D, class K>
 void Simulation<D, K>::sample_series() {
   record_series();
@@ -123,7 +95,6 @@ void Simulation<D, K>::record_series() {
       recorder_.result().put("open_boundaries/" + open_->zones()[b].name(),
                              static_cast<double>(open_->through()[b]));
   }
-  sample_scalars();
   if (!unit_set_.empty()) {
     const StepContext<D> ctx = context(dt_);
     for (const auto& u : unit_set_.units()) u->sample(recorder_.result(), ctx);

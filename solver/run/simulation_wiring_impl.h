@@ -118,7 +118,6 @@ void Simulation<D, K>::build_units() {
   }
   const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
   bound_.emplace(h_, factor, c_max, nu_max, body_ ? body_->max_magnitude() : 0.0);
-  build_transport_units();
   build_phase_transitions();
   build_open_boundaries();
   build_seam_units();
@@ -162,66 +161,8 @@ void Simulation<D, K>::build_seam_units() {
     u->declare_output(recorder_.result());
   }
   bound_->add_limit(unit_set_.max_time_step());
-}
-
-template <int D, class K>
-void Simulation<D, K>::build_transport_units() {
-  const double factor = c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0;
-  std::vector<int> wall_material;
-  for (const auto& w : c_.walls())
-    wall_material.push_back(w.material().empty() ? -1 : material_index(mats_, w.material()));
-  if (c_.has_thermal()) {
-    std::vector<DiffusionMaterial> m;
-    for (const auto& pm : c_.materials()) {
-      DiffusionMaterial dm;
-      dm.coefficient = pm.thermal_conductivity();
-      dm.capacity = pm.has_heat_capacity() ? pm.heat_capacity() : 1.0;
-      dm.density = pm.density();
-      // Both materials of a transition with latent heat take it up over the same interval
-      // (Fuchs 2021 Remark 3), so a particle's enthalpy does not jump when it changes phase.
-      for (const auto& pt : c_.phase_transitions())
-        if (pt.has_latent_heat() &&
-            (pt.solid_material() == pm.name() || pt.fluid_material() == pm.name())) {
-          dm.latent = pt.latent_heat();
-          dm.latent_lo = pt.transition_value() - 0.5 * pt.latent_heat_interval();
-          dm.latent_hi = pt.transition_value() + 0.5 * pt.latent_heat_interval();
-        }
-      m.push_back(dm);
-      // Conduction bound 0.1 rho c_p h^2 / kappa (Fuchs 2021 eq. 41).
-      if (pm.thermal_conductivity() > 0)
-        bound_->add_limit(factor * 0.1 * pm.density() * m.back().capacity * h_ * h_ /
-                          pm.thermal_conductivity());
-    }
-    std::vector<std::optional<TimeFunction>> walls;
-    for (const auto& w : c_.walls())
-      walls.push_back(w.has_temperature()
-                          ? std::optional<TimeFunction>(TimeFunction(w.temperature().value()))
-                          : std::nullopt);
-    heat_.emplace(s_, "temperature", m, walls, wall_material, wall_volume_,
-                  c_.thermal().volumetric_heat_source());
-    units_.push_back("heat_conduction");
-    recorder_.result().add_field(heat_->values());
-  }
-  if (c_.has_diffusion()) {
-    std::vector<DiffusionMaterial> m;
-    for (const auto& pm : c_.materials()) {
-      DiffusionMaterial dm;
-      dm.coefficient = pm.diffusivity();
-      dm.density = pm.density();
-      dm.fixed = pm.fixed_concentration();
-      m.push_back(dm);
-      if (pm.diffusivity() > 0)
-        bound_->add_limit(factor * 0.1 * pm.density() * h_ * h_ / pm.diffusivity());
-    }
-    std::vector<std::optional<TimeFunction>> walls;
-    for (const auto& w : c_.walls())
-      walls.push_back(w.has_concentration()
-                          ? std::optional<TimeFunction>(TimeFunction(w.concentration().value()))
-                          : std::nullopt);
-    concentration_.emplace(s_, "concentration", m, walls, wall_material, wall_volume_, 0.0);
-    units_.push_back("concentration_diffusion");
-    recorder_.result().add_field(concentration_->values());
-  }
+  if (s_.has("temperature")) temperature_ = &s_.template get<double>("temperature");
+  if (s_.has("concentration")) concentration_ = &s_.template get<double>("concentration");
 }
 
 template <int D, class K>
@@ -267,41 +208,6 @@ void Simulation<D, K>::build_open_boundaries() {
 }
 
 template <int D, class K>
-double Simulation<D, K>::initial_scalar(const SceneParticle& p, bool temperature) const {
-  const double fallback =
-      temperature ? c_.thermal().initial_temperature() : c_.diffusion().initial_concentration();
-  switch (p.kind) {
-    case Kind::kFluid: {
-      if (p.open >= 0) {
-        const auto& o = c_.open_boundaries(p.open);
-        if (temperature && o.has_temperature()) return o.temperature();
-        if (!temperature && o.has_concentration()) return o.concentration();
-        return fallback;
-      }
-      const auto& r = c_.fluids(p.region);
-      if (temperature && r.has_initial_temperature()) return r.initial_temperature();
-      if (!temperature && r.has_initial_concentration()) return r.initial_concentration();
-      return fallback;
-    }
-    case Kind::kRigid: {
-      const auto& b = c_.bodies(p.body);
-      if (temperature && b.has_initial_temperature()) return b.initial_temperature();
-      if (!temperature && b.has_initial_concentration()) return b.initial_concentration();
-      return fallback;
-    }
-    case Kind::kWall: {
-      const auto& w = c_.walls(p.wall);
-      if (temperature && w.has_temperature())
-        return TimeFunction(w.temperature().value()).value(0.0);
-      if (!temperature && w.has_concentration())
-        return TimeFunction(w.concentration().value()).value(0.0);
-      return fallback;
-    }
-  }
-  return fallback;
-}
-
-template <int D, class K>
 void Simulation<D, K>::build_scene() {
   SceneBuilder scene(c_, mats_);
   // Pass 1: every rank counts the particles per cell of the whole scene (no communication:
@@ -342,8 +248,7 @@ void Simulation<D, K>::build_scene() {
       wall_motion_->reference_position()[i] = s_.x[i];
     }
     if (wall_index_) (*wall_index_)[i] = p.wall;
-    if (heat_) heat_->values()[i] = initial_scalar(p, true);
-    if (concentration_) concentration_->values()[i] = initial_scalar(p, false);
+    for (const auto& u : unit_set_.units()) u->initialize(i, p);
     if (free_slip_)
       (*free_slip_)[i] = p.kind == Kind::kWall && c_.walls(p.wall).free_slip() ? 1 : 0;
     if (bodies_) bodies_->body_index()[i] = p.body;
@@ -365,9 +270,6 @@ std::map<std::string, std::size_t> Simulation<D, K>::memory_by_owner() const {
   // Units' scratch arrays (their columns are counted with the store).
   if (forces_) m[FluidForces<D, K>::kName] += forces_->bytes();
   if (continuity_) m[ContinuityDensity<D, K>::kName] += continuity_->bytes();
-  for (const ScalarDiffusion<D>* unit :
-       {heat_ ? &*heat_ : nullptr, concentration_ ? &*concentration_ : nullptr})
-    if (unit) m[unit->values().owner()] += unit->bytes();
   for (const auto& u : unit_set_.units()) m[u->name()] += u->scratch_bytes();
   return m;
 }

@@ -5,6 +5,7 @@
 
 #include <mpi.h>
 
+#include "solver/physics/scalar_transport.h"
 #include "solver/physics/surface_tension.h"
 
 namespace sph {
@@ -37,6 +38,15 @@ double UnitSet<D>::max_time_step() const {
 template <int D>
 std::vector<std::unique_ptr<Unit<D>>> make_units(const UnitBuildContext<D>& b) {
   std::vector<std::unique_ptr<Unit<D>>> units;
+  using Scalar = typename ScalarTransport<D>::Field;
+  if (b.c.has_thermal())
+    units.push_back(std::make_unique<ScalarTransport<D>>(Scalar::kTemperature, b.c, b.materials,
+                                                         b.particles, b.h, b.wall_volume,
+                                                         b.cfl_factor, b.wall_index));
+  if (b.c.has_diffusion())
+    units.push_back(std::make_unique<ScalarTransport<D>>(Scalar::kConcentration, b.c, b.materials,
+                                                         b.particles, b.h, b.wall_volume,
+                                                         b.cfl_factor, b.wall_index));
   if (b.c.has_surface_tension())
     units.push_back(std::make_unique<SurfaceTension<D>>(b.c, b.materials, b.particles, b.h,
                                                         b.wall_volume, b.cfl_factor, b.wall_index));

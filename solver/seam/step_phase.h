@@ -5,8 +5,9 @@
 // Fuchs 2021 "Time integration" (eqs. 30-40) and Adami 2012 sec. 3.3:
 //
 //   kick u^{n+1/2} = u^n + dt/2 a^n (eq. 30), [u~ = u + dt/2 a~, Adami, Hu, Adams 2013],
-//   drift r^{n+1} (eq. 32), bodies (eqs. 31, 33-36), prescribed wall motion, open boundaries,
-//   migrate + ghosts + neighbour lists                        -> kAfterSearch
+//   drift r^{n+1} (eq. 32), bodies (eqs. 31, 33-36), prescribed wall motion
+//                                                             -> kAfterDrift
+//   open boundaries, migrate + ghosts + neighbour lists       -> kAfterSearch
 //   density (eq. 13 summation or eq. 14 continuity), EOS (eq. 12), ghost rho and p
 //                                                             -> kDensity
 //   wall condition (Adami 2012 eqs. 22-28), ghost wall values -> kWallState
@@ -23,6 +24,7 @@
 namespace sph {
 
 enum class StepPhase : std::uint8_t {
+  kAfterDrift,   // r^{n+1} and t^{n+1} of owned particles; before the ghosts are sent
   kAfterSearch,  // neighbour lists and the pair kernel are those of r^{n+1}; ghosts current
   kDensity,      // rho^{n+1} and p^{n+1} of owned particles and ghosts
   kWallState,    // wall and rigid particles carry the wall condition's p, rho and velocity
@@ -31,7 +33,7 @@ enum class StepPhase : std::uint8_t {
   kEndOfStep,    // u^{n+1} final; before the checks, output and the next time step
 };
 
-inline constexpr std::size_t kStepPhaseCount = 6;
+inline constexpr std::size_t kStepPhaseCount = 7;
 
 struct StepPhaseInfo {
   StepPhase phase;
@@ -40,6 +42,7 @@ struct StepPhaseInfo {
 };
 
 inline constexpr std::array<StepPhaseInfo, kStepPhaseCount> kStepPhases = {{
+    {StepPhase::kAfterDrift, "after_drift", "Fuchs 2021 eqs. 30-36"},
     {StepPhase::kAfterSearch, "after_search", "neighbour search (Fuchs 2021 sec. 4)"},
     {StepPhase::kDensity, "density", "Fuchs 2021 eqs. 12-14"},
     {StepPhase::kWallState, "wall_state", "Adami 2012 eqs. 22-28"},

@@ -9,14 +9,18 @@
 //    sees the sum of those before it and leaves it for those after;
 //  - adds its snapshot fields once and samples its series (named where they are sampled)
 //    when the run does;
-//  - saves and loads what it keeps outside the particle columns with a checkpoint.
+//  - gives its columns their initial values for the scene's particles, may stop the run
+//    with its own guard, and saves and loads what it keeps outside the particle columns with
+//    a checkpoint.
 // A case that does not call for a unit never builds it: no column, no timer, no pass.
 // docs/adding_a_unit.md walks through adding one.
 #include <cstddef>
 #include <limits>
+#include <string>
 
 #include "solver/core/checkpoint_state.h"
 #include "solver/io/result_file.h"
+#include "solver/scene/scene_builder.h"
 #include "solver/seam/step_context.h"
 #include "solver/seam/step_phase.h"
 
@@ -39,6 +43,11 @@ class Unit {
   // One sample of each of its series, result.put("group/name", ...) (collective); the same
   // call declares them before the file is created (ResultFile::declare).
   virtual void sample(ResultFile& /*result*/, const StepContext<D>& /*ctx*/) {}
+  // Initial values of the unit's columns for scene particle p, stored in row i.
+  virtual void initialize(std::size_t /*i*/, const SceneParticle& /*p*/) {}
+  // The unit's own guard at the end of a step: empty, or why the run cannot go on, naming
+  // the particle (describe_particle in solver/diagnostics/stability_guards.h).
+  virtual std::string check(const StepContext<D>& /*ctx*/) const { return {}; }
   virtual void save(CheckpointState& /*state*/) const {}
   virtual void load(const CheckpointState& /*state*/) {}
 };
