@@ -9,9 +9,8 @@
 //
 // Walls: a wall with a schedule is a Dirichlet boundary. Its particles carry the mirror value
 // T_w = 2 T_D - T~, T~ the Shepard average of the fluid and rigid particles around the wall
-// particle (a mirror of the fluid alone drove a solidified grain resting on a cooled wall
-// 7% of the wall's temperature jump below the wall temperature: its cold particles conducted
-// with the mirror of the hot fluid beside them), the way
+// particle (a mirror of the fluid alone lets a solid resting on the wall conduct with the
+// mirror of the fluid beside it, not of itself), the way
 // Adami 2012 eqs. 22-23 impose a no-slip velocity: the profile then continues linearly
 // through the wall and T_D holds at the wall surface (holding the particles at T_D itself
 // would make the wall a second medium and the boundary condition only first order). They
@@ -23,7 +22,7 @@
 // The mirror value is second order but not monotone: where a wall particle's support holds
 // particles of very different values (hot gas beside a solid resting on a cold wall), T~ is
 // far from the value of the particle the wall conducts with, and 2 T_D - T~ drives that
-// particle past T_D (a solid at the wall temperature was cooled 0.9% of the jump below it).
+// particle past T_D.
 // Each particle a therefore limits the difference it sees to a Dirichlet wall particle w:
 //   T_a - T_w  is clamped to lie between 0 and R (T_a - T_D),   R = kMirrorLimit,
 // which leaves smooth profiles alone (there T_a - T_w is about (1 + 2 y~/y_a)(T_a - T_D),

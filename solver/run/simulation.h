@@ -124,8 +124,8 @@ class Simulation {
   //    the candidates it has);
   //  - kKindsChanged: after a phase transition, with a Verlet skin, the same ghosts refreshed
   //    (kinds and bodies included) and the candidates sorted again by the kinds now, lists
-  //    refined; without a skin, kFresh. A fresh search each time particles melt or freeze
-  //    cost a fifth of the 3D powder box's steps while its grains melted.
+  //    refined; without a skin, kFresh (melting and freezing happen over many steps, and a
+  //    fresh search at each would cost as much as the steps without them).
   enum class Search { kFresh, kAsNeeded, kAtReference, kKindsChanged };
   void exchange_and_search(Search mode = Search::kFresh);
   // Whether some particle has moved half the skin since the last search (collective). First
@@ -192,7 +192,6 @@ class Simulation {
   std::optional<DensitySummation<D, K>> summation_;
   std::optional<ContinuityDensity<D, K>> continuity_;
   std::optional<WallBoundary<D>> walls_;
-  std::optional<WallMotion<D>> wall_motion_;
   std::optional<Probes<D, K>> probes_;
   std::optional<FluidForces<D, K>> forces_;
   std::optional<BodyForce<D>> body_;

@@ -122,12 +122,8 @@ RunOutcome Simulation<D, K>::run() {
     }
   }
   report_progress(true);
-  const char* st = status == RunStatus::kCompleted     ? "completed"
-                   : status == RunStatus::kCancelled   ? "cancelled"
-                   : status == RunStatus::kInterrupted ? "interrupted"
-                                                       : "unstable";
   const std::map<std::string, double> bytes =
-      recorder_.finish(st, message, timers_, memory_by_owner(), searches_);
+      recorder_.finish(to_string(status), message, timers_, memory_by_owner(), searches_);
   out.unit_bytes = bytes;
   out.status = status;
   out.message = message;
@@ -241,12 +237,8 @@ void Simulation<D, K>::start() {
 
 template <int D, class K>
 void Simulation<D, K>::prime() {
-  if (wall_motion_) {
-    Timer tm(timer(WallMotion<D>::kName));
-    wall_motion_->run(t_, transport_);
-  }
   if (bodies_) bodies_->place_owned_particles();
-  run_phase(StepPhase::kAfterDrift);  // prescribed wall values of t
+  run_phase(StepPhase::kAfterDrift);  // walls moved to t, their prescribed values
   step_dt_ = 0;
   exchange_and_search();
   run_phase(StepPhase::kAfterSearch);
@@ -327,11 +319,7 @@ std::string Simulation<D, K>::integrate_step(double dt) {
   }
   t_ += dt;
   ++step_;
-  if (wall_motion_) {
-    Timer tm(timer(WallMotion<D>::kName));
-    wall_motion_->run(t_, transport_);
-  }
-  run_phase(StepPhase::kAfterDrift);  // prescribed wall values of t
+  run_phase(StepPhase::kAfterDrift);  // walls moved to t, their prescribed values
   bool bodies_left = false;
   if (open_) {
     {

@@ -39,19 +39,10 @@ void Simulation<D, K>::build_units() {
     wall_index_ = &s_.template add<std::uint16_t>("wall_index", "walls", true);
     walls_.emplace(s_, fluids_);
     units_.push_back(WallBoundary<D>::kName);
-    bool any_slip = false, any_motion = false;
-    std::vector<MotionPath> paths;
-    for (const auto& w : c_.walls()) {
-      any_slip = any_slip || w.free_slip();
-      paths.emplace_back(w.motion(), D);
-      any_motion = any_motion || !paths.back().is_static();
-    }
+    bool any_slip = false;
+    for (const auto& w : c_.walls()) any_slip = any_slip || w.free_slip();
     if (any_slip) {
       free_slip_ = &s_.template add<std::uint8_t>("wall_free_slip", WallBoundary<D>::kName, true);
-    }
-    if (any_motion) {
-      wall_motion_.emplace(s_, std::move(paths), *wall_index_);
-      units_.push_back(WallMotion<D>::kName);
     }
   }
   if (c_.bodies_size() > 0 || c_.phase_transitions_size() > 0) {
@@ -244,9 +235,6 @@ void Simulation<D, K>::build_scene() {
     s_.id[i] = ids[i];
     if (transport_) (*transport_)[i] = s_.v[i];
     if (background_) (*background_)[i] = Vec<D>::Zero();
-    if (wall_motion_) {
-      wall_motion_->reference_position()[i] = s_.x[i];
-    }
     if (wall_index_) (*wall_index_)[i] = p.wall;
     for (const auto& u : unit_set_.units()) u->initialize(i, p);
     if (free_slip_)

@@ -7,6 +7,7 @@
 
 #include "solver/physics/scalar_transport.h"
 #include "solver/physics/surface_tension.h"
+#include "solver/physics/wall_motion.h"
 
 namespace sph {
 
@@ -38,6 +39,16 @@ double UnitSet<D>::max_time_step() const {
 template <int D>
 std::vector<std::unique_ptr<Unit<D>>> make_units(const UnitBuildContext<D>& b) {
   std::vector<std::unique_ptr<Unit<D>>> units;
+  if (b.wall_index) {
+    std::vector<MotionPath> paths;
+    for (const auto& w : b.c.walls()) paths.emplace_back(w.motion(), D);
+    if (WallMotion<D>::any_moves(paths))
+      units.push_back(std::make_unique<WallMotion<D>>(
+          b.particles, std::move(paths), *b.wall_index,
+          b.particles.has("transport_velocity")
+              ? &b.particles.template get<Vec<D>>("transport_velocity")
+              : nullptr));
+  }
   using Scalar = typename ScalarTransport<D>::Field;
   if (b.c.has_thermal())
     units.push_back(std::make_unique<ScalarTransport<D>>(Scalar::kTemperature, b.c, b.materials,

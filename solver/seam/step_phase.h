@@ -5,14 +5,15 @@
 // Fuchs 2021 "Time integration" (eqs. 30-40) and Adami 2012 sec. 3.3:
 //
 //   kick u^{n+1/2} = u^n + dt/2 a^n (eq. 30), [u~ = u + dt/2 a~, Adami, Hu, Adams 2013],
-//   drift r^{n+1} (eq. 32), bodies (eqs. 31, 33-36), prescribed wall motion
-//                                                             -> kAfterDrift
+//   drift r^{n+1} (eq. 32), bodies (eqs. 31, 33-36)            -> kAfterDrift
+//                                    (prescribed wall motion, wall values of t^{n+1})
 //   open boundaries, migrate + ghosts + neighbour lists       -> kAfterSearch
-//   density (eq. 13 summation or eq. 14 continuity), EOS (eq. 12), ghost rho and p
-//                                                             -> kDensity
+//   density (summation, eq. 14, or continuity, Adami 2012 eq. 6), EOS (eq. 18; Adami 2012
+//   eqs. 3-4), ghost rho and p                                -> kDensity
 //   wall condition (Adami 2012 eqs. 22-28), ghost wall values -> kWallState
-//   heat and species transport (eqs. 28, 37)
-//   a^{n+1} cleared, then every force added (eqs. 15-19)      -> kForces
+//                                    (heat and species transport, eqs. 28, 37)
+//   a^{n+1} cleared, fluid forces (eqs. 15-16) and the rigid coupling (eq. 19) added
+//                                                             -> kForces (more forces added)
 //   constraints on a^{n+1} (open-boundary buffers)            -> kConstraints
 //   kick u^{n+1} = u^{n+1/2} + dt/2 a^{n+1} (eq. 38), bodies (eqs. 39-40)
 //                                                             -> kEndOfStep
@@ -44,9 +45,9 @@ struct StepPhaseInfo {
 inline constexpr std::array<StepPhaseInfo, kStepPhaseCount> kStepPhases = {{
     {StepPhase::kAfterDrift, "after_drift", "Fuchs 2021 eqs. 30-36"},
     {StepPhase::kAfterSearch, "after_search", "neighbour search (Fuchs 2021 sec. 4)"},
-    {StepPhase::kDensity, "density", "Fuchs 2021 eqs. 12-14"},
+    {StepPhase::kDensity, "density", "Fuchs 2021 eqs. 14, 18; Adami 2012 eqs. 3-6"},
     {StepPhase::kWallState, "wall_state", "Adami 2012 eqs. 22-28"},
-    {StepPhase::kForces, "forces", "Fuchs 2021 eqs. 15-19"},
+    {StepPhase::kForces, "forces", "Fuchs 2021 eqs. 15-16, 19"},
     {StepPhase::kConstraints, "constraints", "open-boundary buffers (Tafuni 2018)"},
     {StepPhase::kEndOfStep, "end_of_step", "Fuchs 2021 eqs. 38-40"},
 }};

@@ -17,7 +17,7 @@
 # several invocations (keep OUT_DIR outside a work tree that is cleaned between them).
 # SPHD_SCENES="powder_2d ..." runs (and renders) only the named scenes, paper-resolution ones
 # included whatever SPHD_PAPER says: gastric_04, powder_2d_coarse, powder_3d_coarse,
-# powder_slice_2d, gastric_01, powder_2d, powder_3d.
+# powder_3d_coarse_st (with surface tension), powder_slice_2d, gastric_01, powder_2d, powder_3d.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
 build=${1:-$root/build}
@@ -28,7 +28,7 @@ mkdir -p "$out"
 selected() {  # name: whether SPHD_SCENES (when set) names it
   [ -z "${SPHD_SCENES:-}" ] || [[ " $SPHD_SCENES " == *" $1 "* ]]
 }
-scenes="gastric_04 powder_2d_coarse powder_3d_coarse powder_slice_2d gastric_01 powder_2d powder_3d"
+scenes="gastric_04 powder_2d_coarse powder_3d_coarse powder_3d_coarse_st powder_slice_2d gastric_01 powder_2d powder_3d"
 for name in ${SPHD_SCENES:-}; do
   if [[ " $scenes " != *" $name "* ]]; then
     echo "seed_scenes.sh: SPHD_SCENES: unknown scene '$name' (scenes: $scenes)" >&2
@@ -69,6 +69,11 @@ run gastric_04 "$root/cases/gastric_boluses_2d.textproto" 's/^dx: 0.2$/dx: 0.4/'
 run powder_2d_coarse "$root/cases/powder_grains_2d_coarse.textproto"
 run powder_3d_coarse "$root/cases/powder_melting_3d_coarse.textproto"
 run powder_slice_2d "$root/cases/powder_melting_slice_2d.textproto"
+# The coarse 3D box with the surface tension of liquid steel against its gas (issue #35:
+# whether the melt pools instead of spreading through the gas); sigma = 1.8 N/m, the value of
+# liquid iron and its alloys near their melting point (Keene 1988, Int. Mater. Rev. 33).
+run powder_3d_coarse_st "$root/cases/powder_melting_3d_coarse.textproto" \
+  's/^(thermal \{.*)$/\1\nsurface_tension { pairs { material_a: "liquid_steel" material_b: "gas" sigma: 1.8 } }/'
 if [ "$paper" -ge 1 ]; then
   run gastric_01 "$root/cases/gastric_boluses_2d.textproto" 's/^dx: 0.2$/dx: 0.1/'
 fi
@@ -96,6 +101,7 @@ draw_box powder_3d powder_melting_3d
 draw powder_2d_coarse powder_grains_2d_coarse --scalar temperature --speed-max 800 \
   --labels grain,melt,gas --frames 8
 draw_box powder_3d_coarse powder_melting_3d_coarse
+draw_box powder_3d_coarse_st powder_melting_3d_coarse_surface_tension
 draw powder_slice_2d powder_melting_slice_2d --scalar temperature --speed-max 5 \
   --labels grain,melt,gas --frames 8
 /usr/bin/python3 "$root/tests/validation/phase/scene_figures.py" "$out"
