@@ -1,6 +1,7 @@
 // What each effect costs (not a test): one scene, a disk settling in a heated box, run as
 // fluid only, + heat conduction, + concentration diffusion, + a rigid body, + contact, + heat
-// with bodies and contact, + phase change (the disk melting from its rim), and for each the time
+// with bodies and contact, + phase change (the disk melting from its rim), + a drop of a second
+// fluid in place of the disk, + surface tension between the two fluids, and for each the time
 // per step by unit and the per-particle storage by unit. A unit a scene does not use must show no
 // time and no storage.
 //
@@ -20,6 +21,7 @@ namespace {
 
 struct Effects {
   bool heat = false, body = false, contact = false, concentration = false, phase = false;
+  bool drop = false, tension = false;  // a drop of a second fluid; surface tension on its rim
 };
 
 std::string scene(double dx, const Effects& e) {
@@ -42,7 +44,21 @@ std::string scene(double dx, const Effects& e) {
     t +=
         R"(materials { name: "melt" density: 2000 eos { sound_speed: 1 } kinematic_viscosity: 1e-5 )" +
         std::string("heat_capacity: 500 thermal_conductivity: 20 }\n");
-  t += R"(fluids { material: "fluid" shape { box { lo { x: 0 y: 0 } hi { x: 0.05 y: 0.05 } } } })";
+  // The drop: oil-like, of the same density, where the disk would be but floating mid-box.
+  if (e.drop) {
+    t +=
+        R"(materials { name: "drop" density: 1000 eos { sound_speed: 1 } kinematic_viscosity: 1e-5 })";
+    t += R"(
+fluids { material: "fluid" shape { difference { base { box { lo { x: 0 y: 0 } hi { x: 0.05 y: 0.05 } } } subtract { ball { center { x: 0.025 y: 0.025 } radius: 0.01 } } } } }
+fluids { material: "drop" shape { ball { center { x: 0.025 y: 0.025 } radius: 0.01 } } })";
+  } else {
+    t +=
+        R"(fluids { material: "fluid" shape { box { lo { x: 0 y: 0 } hi { x: 0.05 y: 0.05 } } } })";
+  }
+  // Water against oil, about 0.03-0.05 N/m.
+  if (e.tension)
+    t += R"(
+surface_tension { pairs { material_a: "fluid" material_b: "drop" sigma: 0.04 } })";
   t += "\nwalls { shape { shell { inner { box { lo { x: 0 y: 0 } hi { x: 0.05 y: 0.05 } } } } } ";
   if (e.heat) t += "temperature { value { constant: 350 } } ";
   if (e.concentration) t += "concentration { value { constant: 1 } } ";
@@ -146,6 +162,8 @@ int main(int argc, char** argv) {
       {"+ body + contact", {.body = true, .contact = true}},
       {"+ heat + body + contact", {.heat = true, .body = true, .contact = true}},
       {"+ heat + phase change", {.heat = true, .body = true, .contact = true, .phase = true}},
+      {"+ a drop of a second fluid", {.drop = true}},
+      {"+ drop + surface tension", {.drop = true, .tension = true}},
   };
   for (const auto& v : variants) {
     sph::v1::Case c = sph::parse_case_text(scene(dx, v.effects));
