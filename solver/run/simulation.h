@@ -52,7 +52,6 @@
 #include "solver/physics/fluid_forces.h"
 #include "solver/physics/fluid_table.h"
 #include "solver/physics/wall_boundary.h"
-#include "solver/physics/wall_motion.h"
 #include "solver/run/code_version.h"
 #include "solver/run/output_schedule.h"
 #include "solver/run/run_case.h"
