@@ -44,7 +44,11 @@
 // -sum_j V_w grad W_ij over its wall neighbours (unit, pointing out of the wall) and t the unit
 // tangent along the wall in the plane of n and n_w; theta is measured through the named material,
 // 180 - theta through the other. The curvature of the turned normals bends the interface towards
-// the angle. The magnitude |G| is kept.
+// the angle. The magnitude |G| is kept. At a solid without an angle (a wall not named, a rigid
+// body) the normal is turned the same way with theta = 90 degrees, neutral wetting, with n_w
+// from every wall and rigid neighbour: the colour function counts fluid neighbours only, so
+// next to a solid the unturned normal points into it and the force drives the fluid into the
+// solid (a melted particle at the bottom of a grain on a hot floor was pushed into the grain).
 //
 // Deterministic and rank independent: the sums run over the neighbour list in its canonical
 // order; the normals of ghosts come from their owners.
@@ -174,6 +178,13 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
   const std::uint16_t* mat = s.material.data();
   const double Vw = wall_volume_;
   const bool contact = !contact_.empty() && wall_index_ != nullptr;
+  const ContactAngle neutral = [] {
+    ContactAngle a;
+    a.set = true;
+    a.cos_own = a.cos_other = 0.0;
+    a.sin_own = a.sin_other = 1.0;
+    return a;
+  }();
   for (std::size_t i = 0; i < s.owned(); ++i) {
     normal_[i] = Vec<D>::Zero();
     gradient_[i] = Vec<D>::Zero();
@@ -201,20 +212,21 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
       g -= t;
       G -= sig[mj] * t;
     }
-    double nearest_wall = std::numeric_limits<double>::infinity();
+    // The solids around i (walls and rigid particles: the list's dummies) and the angle of the
+    // nearest solid: a wall's own, else neutral.
+    double nearest = std::numeric_limits<double>::infinity();
     const ContactAngle* angle = nullptr;
     Vec<D> wall_normal = Vec<D>::Zero();
     for (const std::uint32_t* jp = fluid_end; jp != nl.end(i); ++jp, ++g_r, ++g_dw) {
       const std::uint32_t j = *jp;
       const double r = *g_r;
       if (r == 0.0) continue;
-      const Vec<D> gradW = (*g_dw / r) * (xi - x[j]);
-      if (contact && kind[j] == Kind::kWall) {
-        wall_normal -= Vw * gradW;
-        if (r < nearest_wall) {
-          nearest_wall = r;
-          angle = &contact_[(*wall_index_)[j]];
-        }
+      wall_normal -= (Vw * *g_dw / r) * (xi - x[j]);
+      if (r < nearest) {
+        nearest = r;
+        const ContactAngle* own =
+            contact && kind[j] == Kind::kWall ? &contact_[(*wall_index_)[j]] : nullptr;
+        angle = own != nullptr && own->set ? own : &neutral;
       }
     }
     g /= Vi;
@@ -222,19 +234,18 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
     const double gn = G.norm();
     if (!(g.norm() > min_gradient_) || !(gn > 0)) continue;
     Vec<D> n = G / gn;
-    if (angle != nullptr && angle->set) {
+    if (angle != nullptr) {
       const double wn = wall_normal.norm();
       if (wn > 0) {
         const Vec<D> nw = wall_normal / wn;
         Vec<D> t = n - n.dot(nw) * nw;
         const double tn = t.norm();
-        if (tn > 0) {
-          t /= tn;
-          const bool own = mi == angle->through;
-          n = -(own ? angle->cos_own : angle->cos_other) * nw +
-              (own ? angle->sin_own : angle->sin_other) * t;
-          G = gn * n;
-        }
+        if (!(tn > 0)) continue;  // n along the solid's normal: no tangent to turn it to
+        t /= tn;
+        const bool own = mi == angle->through;
+        n = -(own ? angle->cos_own : angle->cos_other) * nw +
+            (own ? angle->sin_own : angle->sin_other) * t;
+        G = gn * n;
       }
     }
     normal_[i] = n;
