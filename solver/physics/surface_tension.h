@@ -80,6 +80,11 @@ class SurfaceTension final : public Unit<D> {
   // det M / (tr M / d)^d below which the curvature takes A10's scalar divergence instead of
   // the full tensor one (M nearly singular).
   static constexpr double kMinMomentRatio = 0.05;
+  // A particle whose own phase fills less than this share of its kernel support (itself left
+  // out) is not on a resolved interface: a lone particle or a cluster of a few is a drop of
+  // radius about dx, whose curvature 1/dx and colour gradient 1/dx give an acceleration
+  // sigma / (rho dx^2) that no time step of the flow resolves. It gets no normal and no force.
+  static constexpr double kMinOwnSupport = 0.2;
 
   // wall_index: which wall of the case each wall particle is (null without walls).
   SurfaceTension(const v1::Case& c, const std::vector<MaterialParams>& materials,
@@ -197,11 +202,16 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
     Vec<D> g = Vec<D>::Zero();  // sum over the interfaces of grad c times V_i
     Vec<D> G = Vec<D>::Zero();  // the same, each interface times its sigma
     const PairValues pv = ctx.pairs.of(nl, i);
-    const double *g_r = pv.r, *g_dw = pv.dw;
+    const double *g_r = pv.r, *g_w = pv.w, *g_dw = pv.dw;
+    // sum_j V_j W_ij over the own phase's neighbours and over all of them
+    double own_support = 0, support = 0;
     const std::uint32_t* const fluid_end = nl.fluid_end(i);
-    for (const std::uint32_t* jp = nl.begin(i); jp != fluid_end; ++jp, ++g_r, ++g_dw) {
+    for (const std::uint32_t* jp = nl.begin(i); jp != fluid_end; ++jp, ++g_r, ++g_w, ++g_dw) {
       const std::uint32_t j = *jp;
       const double r = *g_r;
+      const double VWj = m[j] / rho[j] * *g_w;
+      support += VWj;
+      if (mat[j] == mi) own_support += VWj;
       if (r == 0.0) continue;
       const Vec<D> gradW = (*g_dw / r) * (xi - x[j]);
       const double Vj = m[j] / rho[j], s2 = Vi2 + Vj * Vj;
@@ -217,9 +227,10 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
     double nearest = std::numeric_limits<double>::infinity();
     const ContactAngle* angle = nullptr;
     Vec<D> wall_normal = Vec<D>::Zero();
-    for (const std::uint32_t* jp = fluid_end; jp != nl.end(i); ++jp, ++g_r, ++g_dw) {
+    for (const std::uint32_t* jp = fluid_end; jp != nl.end(i); ++jp, ++g_r, ++g_w, ++g_dw) {
       const std::uint32_t j = *jp;
       const double r = *g_r;
+      support += Vw * *g_w;
       if (r == 0.0) continue;
       wall_normal -= (Vw * *g_dw / r) * (xi - x[j]);
       if (r < nearest) {
@@ -232,7 +243,8 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
     g /= Vi;
     G /= Vi;
     const double gn = G.norm();
-    if (!(g.norm() > min_gradient_) || !(gn > 0)) continue;
+    if (!(g.norm() > min_gradient_) || !(gn > 0) || own_support < kMinOwnSupport * support)
+      continue;
     Vec<D> n = G / gn;
     if (angle != nullptr) {
       const double wn = wall_normal.norm();
