@@ -63,13 +63,11 @@
 
 #include "case/materials.h"
 #include "solver/core/pair_kernel.h"
+#include "solver/core/types.h"
 #include "solver/seam/unit.h"
 #include "sph/v1/case.pb.h"
 
 namespace sph {
-
-template <int D>
-using Mat = Eigen::Matrix<double, D, D, Eigen::DontAlign>;
 
 template <int D>
 class SurfaceTension final : public Unit<D> {
