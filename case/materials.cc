@@ -27,6 +27,10 @@ std::vector<MaterialParams> resolve_materials(const v1::Case& c) {
       if (m.has_kinematic_viscosity()) p.eta = m.kinematic_viscosity() * p.rho0;
       p.pb = m.has_transport_background_pressure() ? m.transport_background_pressure() : p.p0;
     }
+    p.youngs_modulus = m.youngs_modulus();
+    p.poisson_ratio = m.poisson_ratio();
+    p.elastic_law = static_cast<int>(m.elastic_law());
+    p.elastic_damping = m.elastic_damping();
     out.push_back(p);
   }
   return out;

@@ -20,6 +20,18 @@ struct MaterialParams {
   double eta = 0;     // dynamic viscosity
   double nu() const { return eta / rho0; }
   double pb = 0;  // transport-velocity background pressure
+  // Elastic constants of a SOLID material for elastic bodies (thesis sec. 2.1; proto
+  // Material.youngs_modulus ...); 0 where the case gives none.
+  double youngs_modulus = 0;   // E [Pa]
+  double poisson_ratio = 0;    // nu
+  int elastic_law = 0;         // v1::ElasticLaw value (0 = SAINT_VENANT_KIRCHHOFF)
+  double elastic_damping = 0;  // Kelvin-Voigt viscosity eta_d [Pa s]
+  // Lame parameters from E and nu (thesis eq. 2.6) and the bulk modulus K = E / (3 (1 - 2 nu)).
+  double lame_lambda() const {
+    return youngs_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
+  }
+  double shear_modulus() const { return youngs_modulus / (2 * (1 + poisson_ratio)); }
+  double bulk_modulus() const { return youngs_modulus / (3 * (1 - 2 * poisson_ratio)); }
 };
 
 std::vector<MaterialParams> resolve_materials(const v1::Case& c);
