@@ -221,6 +221,11 @@ void check_counts(const v1::Case& c, std::vector<FieldError>& errors) {
   for (int i = 0; i < c.bodies_size(); ++i)
     if (c.bodies(i).has_motion())
       check_motion(c.bodies(i).motion(), idx("bodies", i) + ".motion", errors);
+  for (int i = 0; i < c.elastic_bodies_size(); ++i)
+    for (int j = 0; j < c.elastic_bodies(i).constraints_size(); ++j)
+      if (c.elastic_bodies(i).constraints(j).has_motion())
+        check_motion(c.elastic_bodies(i).constraints(j).motion(),
+                     idx(idx("elastic_bodies", i) + ".constraints", j) + ".motion", errors);
 }
 
 // Depth, count, vertices and points of every region's shape; the case-wide totals are charged
@@ -258,6 +263,13 @@ void check_shapes(const v1::Case& c, std::vector<FieldError>& errors) {
   for (int i = 0; i < c.walls_size(); ++i) region(c.walls(i).shape(), idx("walls", i) + ".shape");
   for (int i = 0; i < c.bodies_size(); ++i)
     region(c.bodies(i).shape(), idx("bodies", i) + ".shape");
+  for (int i = 0; i < c.elastic_bodies_size(); ++i) {
+    const auto& b = c.elastic_bodies(i);
+    region(b.shape(), idx("elastic_bodies", i) + ".shape");
+    for (int j = 0; j < b.constraints_size(); ++j)
+      region(b.constraints(j).region(),
+             idx(idx("elastic_bodies", i) + ".constraints", j) + ".region");
+  }
 }
 
 double component(const v1::Vec3& v, int a) {

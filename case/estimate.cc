@@ -15,8 +15,9 @@
 namespace sph {
 namespace {
 
-// Where the regions that claim lattice points first lie (walls before bodies, bodies before
-// open-boundary buffers, all of them before fluids, as the scene builder claims them): a grid
+// Where the regions that claim lattice points first lie (walls before rigid bodies, rigid
+// bodies before elastic bodies, those before open-boundary buffers, all of them before fluids,
+// as the scene builder claims them): a grid
 // of bins over the clip box, each listing the claiming shapes whose bounds overlap it in
 // claiming order. A point is tested against the shapes of its own bin only, so a fluid
 // around a thousand grains tests the few grains near each of its points, and the cost of a
@@ -120,7 +121,7 @@ class Claimed final : public Shape {
   double cost_;
 };
 
-enum RegionKind { kWallRegion, kBodyRegion, kBufferRegion, kFluidRegion };
+enum RegionKind { kWallRegion, kBodyRegion, kElasticRegion, kBufferRegion, kFluidRegion };
 
 struct Region {
   std::unique_ptr<Shape> shape;
@@ -178,6 +179,8 @@ CaseEstimate estimate_case(const v1::Case& c) {
     regions.push_back({compile_shape(w.shape(), d, shell), kWallRegion});
   for (const auto& b : c.bodies())
     regions.push_back({compile_shape(b.shape(), d, shell), kBodyRegion});
+  for (const auto& b : c.elastic_bodies())
+    regions.push_back({compile_shape(b.shape(), d, shell), kElasticRegion});
   for (const auto& o : c.open_boundaries()) {
     v1::Shape box;
     *box.mutable_box() = o.region();
@@ -216,9 +219,10 @@ CaseEstimate estimate_case(const v1::Case& c) {
       // Not even one test: every lattice point of its bounds.
       n = lattice_points_in(r.shape->bounds().intersected(clip), spec);
     }
-    (r.kind == kWallRegion   ? e.wall_particles
-     : r.kind == kBodyRegion ? e.rigid_particles
-                             : e.fluid_particles) += n;
+    (r.kind == kWallRegion      ? e.wall_particles
+     : r.kind == kBodyRegion    ? e.rigid_particles
+     : r.kind == kElasticRegion ? e.elastic_particles
+                                : e.fluid_particles) += n;
   }
 
   // Fuchs 2021 eq. (41) at rest (|u_max| = 0).
@@ -231,13 +235,22 @@ CaseEstimate estimate_case(const v1::Case& c) {
       e.dt_limited_by = why;
     }
   };
-  for (const auto& m : resolve_materials(c)) {
+  const std::vector<MaterialParams> materials = resolve_materials(c);
+  for (const auto& m : materials) {
     if (!m.fluid) continue;
     limit(f * 0.25 * h / m.c, "acoustic CFL 0.25 h/c");
     double nu = m.nu();
     // Artificial viscosity acts like nu = alpha h c / (2(d+2)) (Adami 2012 eq. 12).
     nu = std::max(nu, c.fluid_model().artificial_viscosity() * h * m.c / (2.0 * (d + 2)));
     if (nu > 0) limit(f * 0.125 * h * h / nu, "viscous 0.125 h^2/nu");
+  }
+  // An elastic body's material at rest: thesis eq. (33) without its velocity and acceleration
+  // terms, 0.6 h / c_s with the bulk sound speed c_s = sqrt(K / rho0), K = E / (3 (1 - 2 nu)).
+  for (const auto& eb : c.elastic_bodies()) {
+    const int k = material_index(materials, eb.material());
+    if (k < 0) continue;
+    const MaterialParams& m = materials[static_cast<std::size_t>(k)];
+    limit(f * 0.6 * h / std::sqrt(m.bulk_modulus() / m.rho0), "elastic 0.6 h/c_s");
   }
   Point3 b = to_point(c.body_force());
   if (c.has_gravity()) b += to_point(c.gravity().acceleration());

@@ -1,6 +1,7 @@
 #pragma once
 // What a case will cost before it runs: particle counts per kind, the time step from
-// Fuchs 2021 eq. (41) at rest, step count and memory. Used by `sphctl submit --dry-run`,
+// Fuchs 2021 eq. (41) at rest (and, with elastic bodies, the thesis eq. (33) bound of their
+// material), step count and memory. Used by `sphctl submit --dry-run`,
 // the server's size limit, and progress ETA before the first step.
 #include <cstdint>
 #include <string>
@@ -13,11 +14,14 @@ struct CaseEstimate {
   double fluid_particles = 0;
   double wall_particles = 0;
   double rigid_particles = 0;
-  double total() const { return fluid_particles + wall_particles + rigid_particles; }
+  double elastic_particles = 0;
+  double total() const {
+    return fluid_particles + wall_particles + rigid_particles + elastic_particles;
+  }
   double initial_dt = 0;      // [s]
   double steps = 0;           // end_time / initial_dt (adaptive runs may differ)
   double bytes = 0;           // particle storage + neighbour lists, all ranks
-  std::string dt_limited_by;  // which criterion of eq. (41) is the smallest
+  std::string dt_limited_by;  // which criterion is the smallest
 };
 
 // Requires a case that passed the structural checks of validate_case (shapes compile). The

@@ -20,6 +20,8 @@ std::vector<FieldError> validate_case(const v1::Case& c, const ValidationLimits&
   for (int i = 0; i < c.fluids_size(); ++i) v.fluid(c.fluids(i), idx("fluids", i));
   for (int i = 0; i < c.walls_size(); ++i) v.wall(c.walls(i), idx("walls", i));
   for (int i = 0; i < c.bodies_size(); ++i) v.body(c.bodies(i), idx("bodies", i));
+  for (int i = 0; i < c.elastic_bodies_size(); ++i)
+    v.elastic_body(c.elastic_bodies(i), idx("elastic_bodies", i));
   if (c.has_contact()) v.contact();
   v.phase_transitions();
   if (c.has_thermal()) v.thermal();

@@ -49,6 +49,9 @@ void Validator::regions_in_domain() {
   for (int i = 0; i < c_.bodies_size(); ++i)
     regions.push_back(
         {&c_.bodies(i).shape(), "body", c_.bodies(i).name(), cat(idx("bodies", i), "shape")});
+  for (int i = 0; i < c_.elastic_bodies_size(); ++i)
+    regions.push_back({&c_.elastic_bodies(i).shape(), "elastic body", c_.elastic_bodies(i).name(),
+                       cat(idx("elastic_bodies", i), "shape")});
   const double shell = default_shell_thickness(c_);
   std::vector<std::unique_ptr<Shape>> shapes;
   std::vector<double> needs;
@@ -56,7 +59,12 @@ void Validator::regions_in_domain() {
     shapes.push_back(compile_shape(*r.shape, d, shell));
     needs.push_back(walk_work(*shapes.back(), spec, around));
   }
+  // Each constraint of an elastic body must hold particles of it; its walk shares the budget.
+  const std::vector<ConstraintCheck> constraints = constraint_checks(spec, domain);
+  for (const auto& k : constraints) needs.push_back(k.need);
   const std::vector<double> share = share_work(needs, kRegionCheckWork);
+  for (std::size_t k = 0; k < constraints.size(); ++k)
+    check_constraint(constraints[k], spec, domain, share[regions.size() + k]);
   for (std::size_t k = 0; k < regions.size(); ++k) {
     const Shape& shape = *shapes[k];
     const Region& r = regions[k];

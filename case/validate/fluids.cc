@@ -10,26 +10,7 @@ void Validator::fluid(const v1::FluidRegion& r, const std::string& f) {
   else
     shape(r.shape(), cat(f, "shape"), true);
   vec(r.initial_velocity(), cat(f, "initial_velocity"));
-  if (r.initial_velocity_field().has_taylor_green()) {
-    const auto& tg = r.initial_velocity_field().taylor_green();
-    if (c_.dimension() != 2)
-      error(cat(f, "initial_velocity_field.taylor_green"), "only in 2D cases");
-    positive(tg.wavelength(), cat(f, "initial_velocity_field.taylor_green.wavelength"));
-    if (!finite(tg.amplitude()))
-      error(cat(f, "initial_velocity_field.taylor_green.amplitude"), "must be finite");
-  }
-  if (r.initial_velocity_field().has_linear()) {
-    const auto& lf = r.initial_velocity_field().linear();
-    const std::string g = cat(f, "initial_velocity_field.linear");
-    vec(lf.center(), cat(g, "center"));
-    vec(lf.gradient_x(), cat(g, "gradient_x"));
-    vec(lf.gradient_y(), cat(g, "gradient_y"));
-    if (c_.dimension() == 2 &&
-        (lf.gradient_z().x() != 0 || lf.gradient_z().y() != 0 || lf.gradient_z().z() != 0))
-      error(cat(g, "gradient_z"), "must be 0 in 2D cases");
-    else if (c_.dimension() == 3)
-      vec(lf.gradient_z(), cat(g, "gradient_z"));
-  }
+  velocity_field(r.initial_velocity_field(), cat(f, "initial_velocity_field"), false);
   if (!(r.position_jitter() >= 0 && r.position_jitter() <= 0.5))
     error(cat(f, "position_jitter"), "must be in [0, 0.5] (a fraction of dx)");
   if (r.has_hydrostatic_surface()) {

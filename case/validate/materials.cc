@@ -41,6 +41,7 @@ void Validator::materials() {
     } else if (m.has_eos()) {
       error(cat(f, "eos"), "a SOLID material has no equation of state");
     }
+    elastic_constants(m, f);
     // Thermal and diffusion properties: checked against the effects the case enables.
     if (m.has_heat_capacity()) positive(m.heat_capacity(), cat(f, "heat_capacity"));
     if (m.has_thermal_conductivity())
@@ -53,6 +54,32 @@ void Validator::materials() {
       error(cat(f, m.has_diffusivity() ? "diffusivity" : "fixed_concentration"),
             "set, but concentration diffusion is not enabled (add a `diffusion { }` block)");
   }
+}
+
+// Elastic constants (thesis sec. 2.1, eq. 2.6): set on a SOLID material only, each in its
+// range. Whether an elastic body's material has them is checked with the body.
+void Validator::elastic_constants(const v1::Material& m, const std::string& f) {
+  if (m.phase() != v1::SOLID) {
+    const std::string why =
+        "set on a FLUID material; elastic constants belong to the SOLID "
+        "material of an elastic body";
+    if (m.has_youngs_modulus()) error(cat(f, "youngs_modulus"), why);
+    if (m.has_poisson_ratio()) error(cat(f, "poisson_ratio"), why);
+    if (m.elastic_law() != v1::ELASTIC_LAW_UNSPECIFIED) error(cat(f, "elastic_law"), why);
+    if (m.elastic_damping() != 0) error(cat(f, "elastic_damping"), why);
+    return;
+  }
+  if (m.has_youngs_modulus())
+    positive(m.youngs_modulus(), cat(f, "youngs_modulus"), "must be > 0 [Pa]");
+  if (m.has_poisson_ratio() && !(m.poisson_ratio() >= 0 && m.poisson_ratio() < 0.5))
+    error(cat(f, "poisson_ratio"),
+          "must be in [0, 0.5) (got " + num(m.poisson_ratio()) +
+              "); 0.5 is incompressible: the bulk modulus E / (3 (1 - 2 nu)) and with it the "
+              "sound speed are infinite, and explicit total Lagrangian SPH cannot run it");
+  non_negative(m.elastic_damping(), cat(f, "elastic_damping"));
+  if (!v1::ElasticLaw_IsValid(m.elastic_law()))
+    error(cat(f, "elastic_law"), "unknown value " + std::to_string(m.elastic_law()) +
+                                     " (SAINT_VENANT_KIRCHHOFF or NEO_HOOKEAN)");
 }
 
 void Validator::material_ref(const std::string& name, v1::MaterialPhase want,

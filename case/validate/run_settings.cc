@@ -17,11 +17,13 @@ void Validator::run_settings() {
   if (t.has_cfl_factor() && (!(t.cfl_factor() > 0) || t.cfl_factor() > 2))
     error("time.cfl_factor", "must be in (0, 2] (got " + num(t.cfl_factor()) + ")");
   non_negative(t.fixed_dt(), "time.fixed_dt");
-  // A fluid material a phase transition produces gives the bound its sound speed too.
-  if (c_.fluids_size() == 0 && c_.phase_transitions_size() == 0 && !(t.fixed_dt() > 0))
+  // A fluid material a phase transition produces gives the bound its sound speed too, and an
+  // elastic body its own bound (thesis eq. 33, with the sound speed of its material).
+  if (c_.fluids_size() == 0 && c_.phase_transitions_size() == 0 && c_.elastic_bodies_size() == 0 &&
+      !(t.fixed_dt() > 0))
     error("time.fixed_dt",
-          "is required when the case has no fluid (the bound of Fuchs 2021 eq. 41 needs a sound "
-          "speed)");
+          "is required when the case has no fluid or elastic body (the bound of Fuchs 2021 eq. "
+          "41 needs a sound speed)");
   if (t.max_steps() < 0) error("time.max_steps", "must be >= 0");
   const auto& o = c_.output();
   non_negative(o.interval(), "output.interval");

@@ -49,8 +49,8 @@ void Validator::top_level() {
   }
   if (c_.dimension() == 2 && c_.periodic_z()) error("periodic_z", "not allowed in a 2D case");
   vec(c_.lattice_origin(), "lattice_origin");
-  if (c_.fluids_size() == 0 && c_.bodies_size() == 0)
-    error("fluids", "a case needs at least one fluid region or rigid body");
+  if (c_.fluids_size() == 0 && c_.bodies_size() == 0 && c_.elastic_bodies_size() == 0)
+    error("fluids", "a case needs at least one fluid region, rigid body or elastic body");
 }
 
 }  // namespace sph::case_validation

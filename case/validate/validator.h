@@ -6,12 +6,14 @@
 #include <cmath>
 #include <cstddef>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "case/estimate.h"
 #include "case/geometry.h"
+#include "case/lattice.h"
 #include "case/number_text.h"
 #include "case/validate.h"
 #include "sph/v1/case.pb.h"
@@ -39,17 +41,18 @@ class Validator {
   bool within_bounds();  // top_level.cc: false if a bound of case_limits.h is broken
   void top_level();      // top_level.cc
   bool dimension_ok() const { return dim_ok_; }
-  void materials();                                            // materials.cc
-  void fluid(const v1::FluidRegion& r, const std::string& f);  // fluids.cc
-  void wall(const v1::Wall& w, const std::string& f);          // walls.cc
-  void body(const v1::RigidBody& b, const std::string& f);     // bodies.cc
-  void contact();                                              // bodies.cc
-  void phase_transitions();                                    // phase_transitions.cc
-  void thermal();                                              // thermal.cc
-  void open_boundaries();                                      // open_boundaries.cc
-  void run_settings();                                         // run_settings.cc
-  void probes();                                               // probes.cc
-  void case_size();                                            // case_size.cc
+  void materials();                                                   // materials.cc
+  void fluid(const v1::FluidRegion& r, const std::string& f);         // fluids.cc
+  void wall(const v1::Wall& w, const std::string& f);                 // walls.cc
+  void body(const v1::RigidBody& b, const std::string& f);            // bodies.cc
+  void contact();                                                     // bodies.cc
+  void elastic_body(const v1::ElasticBody& b, const std::string& f);  // elastic_bodies.cc
+  void phase_transitions();                                           // phase_transitions.cc
+  void thermal();                                                     // thermal.cc
+  void open_boundaries();                                             // open_boundaries.cc
+  void run_settings();                                                // run_settings.cc
+  void probes();                                                      // probes.cc
+  void case_size();                                                   // case_size.cc
 
   // Errors of a check outside this class (validate_reference, ...): through error(), or all
   // of them appended as they are.
@@ -74,16 +77,34 @@ class Validator {
   void shape(const v1::Shape& s, const std::string& f, bool top);
   void time_function(const v1::TimeFunction& tf, const std::string& f);
   void motion(const v1::Motion& m, const std::string& f);
+  // velocity_fields.cc: beam_mode is refused unless elastic_body.
+  void velocity_field(const v1::VelocityField& v, const std::string& f, bool elastic_body);
 
   // materials.cc, thermal.cc
   static constexpr int kMaterialsListed = 8;
   void material_ref(const std::string& name, v1::MaterialPhase want, const std::string& field,
                     bool required);
   int material_position(const std::string& name) const;
+  void elastic_constants(const v1::Material& m, const std::string& f);
   void transport_properties(const std::string& name, const std::string& field);
 
   // case_size.cc
   void regions_in_domain();
+  // elastic_bodies.cc: whether each constraint region of an elastic body holds particles of
+  // it, a walk over the body's points in the region that shares kRegionCheckWork with the
+  // regions' walks.
+  struct ConstraintCheck {
+    std::shared_ptr<const Shape> body;
+    std::unique_ptr<Shape> region;
+    // Walls, rigid bodies and earlier elastic bodies, which take lattice points first.
+    std::shared_ptr<const std::vector<std::shared_ptr<const Shape>>> claims;
+    std::unique_ptr<Shape> part;  // the body's points in the region, claims taken out
+    std::string field, what;
+    double need = 0;  // work to test every point
+  };
+  std::vector<ConstraintCheck> constraint_checks(const LatticeSpec& spec, const Aabb& domain) const;
+  void check_constraint(const ConstraintCheck& k, const LatticeSpec& spec, const Aabb& domain,
+                        double budget);
   // Points of a region a sample must have found before the region is refused on it.
   static constexpr double kMinHitsToRefuse = 100;
   std::string domain_text() const;
@@ -97,6 +118,7 @@ class Validator {
   std::set<std::string> names_;                     // material names
   std::map<std::string, v1::MaterialPhase> phase_;  // of each material name
   std::set<std::string> body_names_;
+  std::set<std::string> elastic_names_;
   std::set<std::string> reported_;  // materials whose missing coefficients are reported
   std::size_t unreported_ = 0;
   bool dim_ok_ = true;

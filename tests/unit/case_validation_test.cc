@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <vector>
 
@@ -491,7 +493,8 @@ TEST(CaseValidation, SurfaceTensionPairs) {
       << dump(errs);
   errs = errors_of(
       m + R"(surface_tension { pairs { material_a: "water" material_b: "oil" sigma: -1 } })");
-  EXPECT_TRUE(has_error(errs, "surface_tension.pairs[0].sigma", "must be > 0 and finite [N/m]; got -1"))
+  EXPECT_TRUE(
+      has_error(errs, "surface_tension.pairs[0].sigma", "must be > 0 and finite [N/m]; got -1"))
       << dump(errs);
   errs = errors_of(
       m + R"(surface_tension { pairs { material_a: "water" material_b: "oil" sigma: 0 } })");
@@ -522,33 +525,300 @@ TEST(CaseValidation, SurfaceTensionPairs) {
 }
 
 TEST(CaseValidation, SurfaceTensionContactAngles) {
-  const std::string m = std::string(kTwoFluids) +
-                        R"(walls { name: "floor" shape { box { lo { x: 0 y: 0 } hi { x: 2 y: 0.4 } } } }
+  const std::string m =
+      std::string(kTwoFluids) +
+      R"(walls { name: "floor" shape { box { lo { x: 0 y: 0 } hi { x: 2 y: 0.4 } } } }
 )";
-  auto errs = errors_of(m + R"(surface_tension { pairs { material_a: "water" material_b: "oil" sigma: 0.03 }
+  auto errs =
+      errors_of(m + R"(surface_tension { pairs { material_a: "water" material_b: "oil" sigma: 0.03 }
     walls { wall: "floor" contact_angle: 60 material: "water" } })");
   EXPECT_TRUE(errs.empty()) << dump(errs);
   for (const char* angle : {"0", "180", "-30", "200"}) {
-    errs = errors_of(m + "surface_tension { pairs { material_a: \"water\" material_b: \"oil\" sigma: 0.072 } "
-                         "walls { wall: \"floor\" contact_angle: " +
-                     angle + " material: \"water\" } }");
+    errs = errors_of(
+        m +
+        "surface_tension { pairs { material_a: \"water\" material_b: \"oil\" sigma: 0.072 } "
+        "walls { wall: \"floor\" contact_angle: " +
+        angle + " material: \"water\" } }");
     EXPECT_TRUE(has_error(errs, "surface_tension.walls[0].contact_angle",
                           std::string("must be in (0, 180) degrees; got ") + angle))
         << dump(errs);
   }
-  errs = errors_of(m + R"(surface_tension { pairs { material_a: "water" material_b: "oil" sigma: 0.03 }
+  errs =
+      errors_of(m + R"(surface_tension { pairs { material_a: "water" material_b: "oil" sigma: 0.03 }
     walls { wall: "roof" contact_angle: 60 material: "water" }
     walls { wall: "floor" contact_angle: 60 material: "air" }
     walls { wall: "floor" contact_angle: 70 material: "water" }
     walls { contact_angle: 70 material: "water" } })");
-  EXPECT_TRUE(has_error(errs, "surface_tension.walls[0].wall", "unknown wall 'roof'")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "surface_tension.walls[0].wall", "unknown wall 'roof'"))
+      << dump(errs);
   EXPECT_TRUE(has_error(errs, "surface_tension.walls[1].material",
                         "material 'air' has no surface tension (it is in no pair)"))
       << dump(errs);
-  EXPECT_TRUE(has_error(errs, "surface_tension.walls[2].wall",
-                        "duplicate contact angle for wall 'floor' (already surface_tension.walls[1])"))
+  EXPECT_TRUE(
+      has_error(errs, "surface_tension.walls[2].wall",
+                "duplicate contact angle for wall 'floor' (already surface_tension.walls[1])"))
       << dump(errs);
   EXPECT_TRUE(has_error(errs, "surface_tension.walls[3].wall", "is required")) << dump(errs);
+}
+
+// Elastic bodies (case/validate/elastic_bodies.cc). The base case's fluid fills [0.5, 1.5]^2;
+// the plate lies above it, clamped at its left end.
+const char* kRubber =
+    R"(materials { name: "rubber" phase: SOLID density: 1000 youngs_modulus: 1.4e6 poisson_ratio: 0.4 }
+)";
+const char* kPlate = R"(elastic_bodies { name: "plate" material: "rubber"
+  shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } }
+  constraints { region { box { lo { x: 0.2 y: 1.6 } hi { x: 0.4 y: 1.8 } } } } }
+)";
+// No fluid: the oscillating plate of thesis digest sec. 8.4 in a 2 x 2 domain.
+const char* kNoFluid = R"(
+name: "plate"
+dimension: 2
+dx: 0.1
+domain { lo { x: 0 y: 0 } hi { x: 2 y: 2 } }
+time { end_time: 1 }
+)";
+
+std::vector<FieldError> plate_errors(const std::string& extra) {
+  return errors_of(std::string(kRubber) + extra);
+}
+
+TEST(CaseValidation, ElasticBodiesAreAccepted) {
+  auto errs = plate_errors(kPlate);
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  // Without fluid, clamped, with the beam's first bending mode, observed at its tip.
+  errs = validate_case(parse_case_text(std::string(kNoFluid) + kRubber + R"(
+elastic_bodies { name: "plate" material: "rubber"
+  shape { box { lo { x: 0.2 y: 0.9 } hi { x: 1.6 y: 1.1 } } }
+  constraints { region { box { lo { x: 0.2 y: 0.9 } hi { x: 0.4 y: 1.1 } } } }
+  initial_velocity_field { beam_mode { root { x: 0.4 y: 1 } axis { x: 1 } direction { y: 1 }
+                                       length: 1.2 tip_velocity: 0.05 } }
+  observation_points { x: 1.55 y: 1 } })"));
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  // Free in a fluid, with a field a fluid could take as well, held by a moving clamp.
+  errs = plate_errors(R"(elastic_bodies { name: "flap" material: "rubber"
+  shape { box { lo { x: 0.8 y: 0.8 } hi { x: 1.2 y: 1.2 } } }
+  initial_velocity_field { linear { gradient_x { y: 0.1 } } } }
+elastic_bodies { name: "vortex" material: "rubber"
+  shape { ball { center { x: 0.3 y: 0.3 } radius: 0.15 } }
+  initial_velocity_field { taylor_green { wavelength: 1 amplitude: 0.1 } }
+  constraints { region { ball { center { x: 0.3 y: 0.3 } radius: 0.08 } }
+                motion { velocity_x { constant: 0.1 } } } })");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+}
+
+TEST(CaseValidation, ElasticMaterialConstants) {
+  // On a FLUID material each elastic field is refused by name.
+  auto errs = errors_of(R"(materials { name: "oil" density: 900 eos { sound_speed: 10 }
+  youngs_modulus: 1e6 poisson_ratio: 0.3 elastic_law: NEO_HOOKEAN elastic_damping: 1 })");
+  for (const char* field : {"youngs_modulus", "poisson_ratio", "elastic_law", "elastic_damping"})
+    EXPECT_TRUE(has_error(errs, std::string("materials[1].") + field, "set on a FLUID material"))
+        << field << ": " << dump(errs);
+  // Ranges on a SOLID material.
+  errs = errors_of(R"(materials { name: "gel" phase: SOLID density: 1000 youngs_modulus: 0
+  poisson_ratio: 0.5 elastic_damping: -1 })");
+  EXPECT_TRUE(has_error(errs, "materials[1].youngs_modulus", "must be > 0 [Pa] (got 0)"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "materials[1].poisson_ratio",
+                        "must be in [0, 0.5) (got 0.5); 0.5 is incompressible"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "materials[1].poisson_ratio", "explicit total Lagrangian SPH"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "materials[1].elastic_damping", "must be >= 0 (got -1)"))
+      << dump(errs);
+  errs = errors_of(
+      R"(materials { name: "gel" phase: SOLID density: 1000 youngs_modulus: 1e6 poisson_ratio: -0.1 })");
+  EXPECT_TRUE(has_error(errs, "materials[1].poisson_ratio", "must be in [0, 0.5) (got -0.1)"))
+      << dump(errs);
+  // A law outside the enum (a newer client's value, or a number in binary).
+  auto c = parse_case_text(std::string(kBase) + kRubber + kPlate);
+  c.mutable_materials(1)->set_elastic_law(static_cast<v1::ElasticLaw>(7));
+  errs = validate_case(c);
+  EXPECT_TRUE(has_error(errs, "materials[1].elastic_law", "unknown value 7")) << dump(errs);
+  // The body's material: known, SOLID, with both constants.
+  errs = errors_of(R"(materials { name: "steel" phase: SOLID density: 7800 }
+elastic_bodies { name: "a" material: "steel" shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } } }
+elastic_bodies { name: "b" material: "water" shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } } }
+elastic_bodies { name: "c" material: "lead" shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } } }
+elastic_bodies { name: "d" shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } } })");
+  EXPECT_TRUE(has_error(errs, "materials[1].youngs_modulus",
+                        "required: material 'steel' is used by elastic_bodies[0].material"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "materials[1].poisson_ratio", "required")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[1].material", "is FLUID, expected SOLID"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[2].material", "unknown material 'lead'"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[3].material", "is required")) << dump(errs);
+}
+
+TEST(CaseValidation, ElasticBodyNamesAndShape) {
+  auto errs = plate_errors(std::string(kPlate) + kPlate);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[1].name", "duplicate elastic body name 'plate'"))
+      << dump(errs);
+  errs = plate_errors(
+      std::string(R"(walls { name: "plate" shape { box { lo { x: 0 y: 0 } hi { x: 2 y: 0.2 } } } }
+bodies { name: "disk" material: "rubber" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } }
+elastic_bodies { name: "disk" material: "rubber" shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } } }
+elastic_bodies { name: "a/b" material: "rubber" shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } } }
+elastic_bodies { material: "rubber" shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } }
+                 observation_points { x: 1 y: 1.7 } }
+)") + kPlate);
+  EXPECT_TRUE(
+      has_error(errs, "elastic_bodies[0].name", "'disk' is already the name of a rigid body"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[1].name", "only letters, digits")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[2].name", "is required with observation_points"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[3].name", "'plate' is already the name of walls[0]"))
+      << dump(errs);
+  // The shape: required, valid, and at least half inside the domain.
+  errs = plate_errors(R"(elastic_bodies { name: "p" material: "rubber" }
+elastic_bodies { name: "q" material: "rubber" shape { ball { center { x: 1 y: 1 } radius: -1 } } })");
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].shape", "is required")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[1].shape.ball.radius", "must be > 0")) << dump(errs);
+  errs = plate_errors(R"(elastic_bodies { name: "p" material: "rubber"
+  shape { box { lo { x: 1.5 y: 1.6 } hi { x: 3.5 y: 1.8 } } } })");
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].shape",
+                        "elastic body 'p' lies mostly outside the domain (x in [0, 2], y in [0, "
+                        "2]): 10 of its 40 lattice points are inside"))
+      << dump(errs);
+}
+
+TEST(CaseValidation, ElasticBodyConstraints) {
+  // Each constraint's region: present, with an interior, valid, with a valid motion.
+  auto errs = plate_errors(R"(elastic_bodies { name: "p" material: "rubber"
+  shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } }
+  constraints { }
+  constraints { region { points { points { x: 0.25 y: 1.65 } } } }
+  constraints { region { box { lo { x: 0.4 y: 1.6 } hi { x: 0.2 y: 1.8 } } } }
+  constraints { region { box { lo { x: 0.2 y: 1.6 } hi { x: 0.4 y: 1.8 } } }
+                motion { velocity_x { piecewise_linear { times: 0 times: 1 values: 1 } } } } })");
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].constraints[0].region", "is required"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].constraints[1].region.points",
+                        "a constraint region needs an interior"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].constraints[2].region.box.hi.x",
+                        "must be greater than box.lo"))
+      << dump(errs);
+  EXPECT_TRUE(
+      has_error(errs, "elastic_bodies[0].constraints[3].motion.velocity_x.piecewise_linear.values",
+                "as many values as times"))
+      << dump(errs);
+  // A region beside the body, and one inside a wall that takes the body's points there.
+  errs = plate_errors(
+      R"(walls { name: "clamp" shape { box { lo { x: 0 y: 1.5 } hi { x: 0.4 y: 1.9 } } } }
+elastic_bodies { name: "p" material: "rubber"
+  shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } }
+  constraints { region { box { lo { x: 0.2 y: 1.6 } hi { x: 0.4 y: 1.8 } } } }
+  constraints { region { box { lo { x: 1.3 y: 1.6 } hi { x: 1.5 y: 1.8 } } } }
+  constraints { region { box { lo { x: 0.4 y: 1.6 } hi { x: 0.5 y: 1.8 } } } } })");
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].constraints[0].region",
+                        "holds no particle of the body: no lattice point of elastic body 'p' "
+                        "inside the domain and outside the walls and bodies before it lies in "
+                        "the region"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].constraints[1].region",
+                        "(the body spans x in [0.2, 1.2], y in [1.6, 1.8], the region x in [1.3, "
+                        "1.5], y in [1.6, 1.8])"))
+      << dump(errs);
+  EXPECT_FALSE(has_error(errs, "elastic_bodies[0].constraints[2].region", "")) << dump(errs);
+  // A point-set body: its own points are tested.
+  errs = plate_errors(R"(elastic_bodies { name: "p" material: "rubber"
+  shape { points { points { x: 0.25 y: 1.65 } points { x: 0.35 y: 1.65 } } }
+  constraints { region { box { lo { x: 0.3 y: 1.6 } hi { x: 0.4 y: 1.7 } } } }
+  constraints { region { box { lo { x: 0.5 y: 1.6 } hi { x: 0.6 y: 1.7 } } } } })");
+  EXPECT_FALSE(has_error(errs, "elastic_bodies[0].constraints[0].region", "")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].constraints[1].region",
+                        "holds no particle of the body: no point of elastic body 'p'"))
+      << dump(errs);
+  // Issue #36: neither a constraint nor a fluid.
+  errs = validate_case(
+      parse_case_text(std::string(kNoFluid) + kRubber + R"(gravity { acceleration { y: -9.81 } }
+elastic_bodies { name: "p" material: "rubber" shape { box { lo { x: 0.2 y: 0.9 } hi { x: 1.6 y: 1.1 } } } })"));
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].constraints",
+                        "this body has no constraint and the case no fluid region"))
+      << dump(errs);
+}
+
+TEST(CaseValidation, ElasticBodyInitialStateAndObservation) {
+  // The beam mode: elastic bodies only, with a length, an axis and a direction across it.
+  auto errs = errors_of(R"(fluids { name: "g" material: "water"
+  shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } }
+  initial_velocity_field { beam_mode { axis { x: 1 } direction { y: 1 } length: 1 } } })");
+  EXPECT_TRUE(has_error(errs, "fluids[1].initial_velocity_field.beam_mode", "elastic bodies only"))
+      << dump(errs);
+  const std::string body = R"(elastic_bodies { name: "p" material: "rubber"
+  shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } }
+  constraints { region { box { lo { x: 0.2 y: 1.6 } hi { x: 0.4 y: 1.8 } } } }
+  initial_velocity_field { beam_mode { )";
+  errs = plate_errors(body + "direction { y: 1 } length: 0 } } }");
+  const std::string g = "elastic_bodies[0].initial_velocity_field.beam_mode.";
+  EXPECT_TRUE(has_error(errs, g + "axis", "must not be zero")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, g + "length", "must be > 0 (the free length L [m]) (got 0)"))
+      << dump(errs);
+  errs = plate_errors(body + "axis { x: 1 } length: 1 } } }");
+  EXPECT_TRUE(has_error(errs, g + "direction", "must not be zero")) << dump(errs);
+  errs = plate_errors(body + "axis { x: 1 } direction { x: -2 } length: 1 } } }");
+  EXPECT_TRUE(has_error(errs, g + "direction", "must not be parallel to axis")) << dump(errs);
+  errs = plate_errors(body + "axis { x: 1 z: 1 } direction { y: 1 } length: 1 } } }");
+  EXPECT_TRUE(has_error(errs, g + "axis.z", "must be 0 in a 2D case")) << dump(errs);
+  // Temperature with heat conduction only, and then positive; gravity to ignore.
+  const std::string plain = R"(elastic_bodies { name: "p" material: "rubber"
+  shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } }
+  constraints { region { box { lo { x: 0.2 y: 1.6 } hi { x: 0.4 y: 1.8 } } } } )";
+  errs = plate_errors(plain + "initial_temperature: 300 ignore_gravity: true }");
+  EXPECT_TRUE(
+      has_error(errs, "elastic_bodies[0].initial_temperature", "heat conduction is not enabled"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].ignore_gravity", "the case has no gravity"))
+      << dump(errs);
+  errs = errors_of(
+      R"(materials { name: "rubber" phase: SOLID density: 1000 youngs_modulus: 1.4e6 poisson_ratio: 0.4 heat_capacity: 1 thermal_conductivity: 1 }
+thermal { initial_temperature: 300 }
+)" + plain +
+      "initial_temperature: -5 }");
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].initial_temperature", "must be > 0 [K] (got -5)"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "materials[0].heat_capacity", "used by fluids[0].material"))
+      << dump(errs);
+  // Observation points inside the domain.
+  errs = plate_errors(plain +
+                      "observation_points { x: 1 y: 1.7 } observation_points { x: 2.5 y: 1 } }");
+  EXPECT_FALSE(has_error(errs, "elastic_bodies[0].observation_points[0]", "")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].observation_points[1]",
+                        "lies outside the domain (x in [0, 2], y in [0, 2])"))
+      << dump(errs);
+}
+
+// Elastic particles are counted like rigid ones (they take the lattice points of the fluid
+// they overlap), and the solid's step 0.6 h / c_s (thesis eq. 33 at rest) joins the fluid's.
+TEST(CaseValidation, ElasticBodyEstimate) {
+  auto c = parse_case_text(std::string(kBase) + kRubber + kPlate);
+  CaseEstimate e = estimate_case(c);
+  EXPECT_NEAR(e.elastic_particles, 20, 0.5);  // 10 x 2 lattice points in the 1 x 0.2 plate
+  EXPECT_NEAR(e.fluid_particles, 100, 0.5);
+  EXPECT_NEAR(e.total(), 120, 0.5);
+  // K = E / (3 (1 - 2 nu)) = 1.4e6 / 0.6; c_s = sqrt(K / 1000) = 48.30 m/s; the fluid's
+  // 0.25 h / c = 2.5e-3 s is larger.
+  const double cs = std::sqrt(1.4e6 / 0.6 / 1000);
+  std::printf("elastic step %.6e s (expected 0.6 h / c_s = %.6e s), limited by %s\n", e.initial_dt,
+              0.6 * 0.1 / cs, e.dt_limited_by.c_str());
+  EXPECT_NEAR(e.initial_dt, 0.6 * 0.1 / cs, 1e-15);
+  EXPECT_EQ(e.dt_limited_by, "elastic 0.6 h/c_s");
+  EXPECT_NEAR(e.steps, std::ceil(1.0 / e.initial_dt), 0.5);
+  // A stiff body moved into the fluid: its points leave it.
+  c.mutable_elastic_bodies(0)->mutable_shape()->mutable_box()->mutable_lo()->set_y(1.3);
+  c.mutable_elastic_bodies(0)->mutable_shape()->mutable_box()->mutable_hi()->set_y(1.5);
+  e = estimate_case(c);
+  EXPECT_NEAR(e.elastic_particles, 20, 0.5);
+  EXPECT_NEAR(e.fluid_particles, 100 - 14, 0.5);  // x in [0.5, 1.2], two rows
+  // A soft material leaves the fluid's acoustic step in charge.
+  c.mutable_materials(1)->set_youngs_modulus(1e3);
+  e = estimate_case(c);
+  EXPECT_EQ(e.dt_limited_by, "acoustic CFL 0.25 h/c");
+  EXPECT_NEAR(e.initial_dt, 2.5e-3, 1e-15);
 }
 
 }  // namespace
