@@ -1,0 +1,309 @@
+// The total Lagrangian SPH operators (solver/elastic/total_lagrangian.h) on lattice blocks,
+// with the solver's own particle store, halo, neighbour list and kernels: the deformation
+// gradient and its rate are exact for linear fields on every particle, interior and boundary
+// alike; the internal forces of a uniformly deformed block sum to zero and vanish in its
+// interior; a stretched bar pulls its ends inwards with the force P A across any section.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <vector>
+
+#include "solver/core/kernel.h"
+#include "solver/core/neighbor_list.h"
+#include "solver/elastic/elastic_law.h"
+#include "solver/elastic/total_lagrangian.h"
+#include "solver/parallel/halo.h"
+
+namespace sph {
+namespace {
+
+constexpr double kDx = 0.002;
+constexpr double kRho0 = 1000.0;
+
+// A block of n[0] x n[1] (x n[2]) lattice particles of body 0, reference positions
+// X = (i + 1/2) dx, placed at x = map(X) with velocity vel(x); next to it along +x a block of
+// body 1 and below it a wall layer, both at rest, whose reference positions and (for the
+// walls) body index would make them reference neighbours if the operators did not tell bodies
+// and kinds apart; above it a fluid layer. One rank, no periodic axes.
+template <int D, class K>
+struct Block {
+  using Map = std::function<Vec<D>(const Vec<D>&)>;
+  Block(const std::array<int, D>& n, const Map& map, const Map& vel, double h = 1.3 * kDx)
+      : kernel(h),
+        rc(kernel.support_radius()),
+        grid(Vec<D>::Constant(-12 * kDx), hi(n), rc, std::array<bool, D>{}),
+        halo(grid, comm),
+        X(s.template add<Vec<D>>("elastic_reference_position", "test", true)),
+        body(s.template add<std::uint16_t>("elastic_body", "test", true)),
+        PB(s.template add<Mat<D>>("elastic_stress_b", "test", false)) {
+    std::vector<std::int64_t> counts(static_cast<std::size_t>(grid.total()), 1);
+    halo.set_decomposition(Decomposition<D>(grid, 1, counts));
+    for (int a = 0; a < D; ++a) extent[a] = n[static_cast<std::size_t>(a)] * kDx;
+    std::vector<Vec<D>> pos, ref;
+    std::vector<Kind> kinds;
+    std::vector<std::uint16_t> bodies;
+    auto add = [&](const Vec<D>& r, const Vec<D>& x, Kind k, std::uint16_t b) {
+      ref.push_back(r);
+      pos.push_back(x);
+      kinds.push_back(k);
+      bodies.push_back(b);
+    };
+    std::array<int, 3> lo3{-3, -3, D == 3 ? -3 : 0}, hi3{n[0] + 8, n[1] + 3, D == 3 ? n[2] + 3 : 1};
+    for (int k = lo3[2]; k < hi3[2]; ++k)
+      for (int j = lo3[1]; j < hi3[1]; ++j)
+        for (int i = lo3[0]; i < hi3[0]; ++i) {
+          const int idx[3] = {i, j, k};
+          Vec<D> r;
+          bool inside = true;
+          for (int a = 0; a < D; ++a) {
+            r[a] = (idx[a] + 0.5) * kDx;
+            inside = inside && idx[a] >= 0 && idx[a] < n[static_cast<std::size_t>(a)];
+          }
+          if (inside) {
+            add(r, map(r), Kind::kElastic, 0);
+          } else if (j < 0 && i < n[0]) {
+            add(r, r, Kind::kWall, 0);
+          } else if (i >= n[0] && j >= 0 && j < n[1]) {
+            add(r, r, Kind::kElastic, 1);
+          } else if (j >= n[1]) {
+            add(r, r, Kind::kFluid, 0);
+          }
+        }
+    s.resize(pos.size(), pos.size());
+    for (std::size_t p = 0; p < pos.size(); ++p) {
+      s.x[p] = pos[p];
+      s.v[p] = kinds[p] == Kind::kElastic && bodies[p] == 0 ? vel(pos[p]) : Vec<D>::Zero();
+      s.kind[p] = kinds[p];
+      s.id[p] = static_cast<ParticleId>(p);
+      s.m[p] = kRho0 * std::pow(kDx, D);
+      s.material[p] = 0;
+      X[p] = ref[p];
+      body[p] = bodies[p];
+    }
+    halo.migrate(s);
+    halo.build_ghosts(s);
+    nl.build(s, grid, halo.ghost_box(), rc);
+    refs.build(s, nl, X.data(), body.data(), inv_rho0.data(), kernel);
+  }
+  static Vec<D> hi(const std::array<int, D>& n) {
+    Vec<D> v;
+    for (int a = 0; a < D; ++a) v[a] = (n[static_cast<std::size_t>(a)] + 14) * kDx;
+    return v;
+  }
+  bool of_block(std::size_t i) const { return s.kind[i] == Kind::kElastic && body[i] == 0; }
+  // Distance of the reference position from the block's surface.
+  double depth(std::size_t i) const {
+    double d = 1e300;
+    for (int a = 0; a < D; ++a) d = std::min({d, X[i][a], extent[a] - X[i][a]});
+    return d;
+  }
+
+  K kernel;
+  double rc;
+  CellGrid<D> grid;
+  Comm comm{MPI_COMM_WORLD};
+  Halo<D> halo;
+  ParticleStore<D> s;
+  Column<Vec<D>>& X;
+  Column<std::uint16_t>& body;
+  Column<Mat<D>>& PB;
+  NeighborList<D> nl;
+  ReferenceNeighbors<D> refs;
+  std::vector<double> inv_rho0{1.0 / kRho0};
+  Vec<D> extent;
+};
+
+template <int D>
+Mat<D> deformation() {
+  Mat<D> A;
+  if constexpr (D == 2)
+    A << 1.1, 0.2, -0.05, 0.95;
+  else
+    A << 1.1, 0.2, 0.0, -0.05, 0.95, 0.1, 0.03, -0.08, 1.04;
+  return A;
+}
+
+template <int D>
+Mat<D> velocity_gradient() {
+  Mat<D> L;
+  if constexpr (D == 2)
+    L << 0.3, -1.2, 0.7, -0.4;
+  else
+    L << 0.3, -1.2, 0.5, 0.7, -0.4, 0.2, -0.6, 0.1, 0.9;
+  return L;
+}
+
+// x = A X + c and v = L x + w: F = A and dF/dt = L A on every particle of the block.
+template <int D, class K>
+void linear_fields_are_exact(const char* kernel_name, const std::array<int, D>& n) {
+  const Mat<D> A = deformation<D>(), L = velocity_gradient<D>();
+  const Vec<D> c = Vec<D>::Constant(0.3 * kDx), w = Vec<D>::Constant(-0.02);
+  Block<D, K> b(
+      n, [&](const Vec<D>& X) -> Vec<D> { return A * X + c; },
+      [&](const Vec<D>& x) -> Vec<D> { return L * x + w; });
+  double err_f[2] = {0, 0}, err_df[2] = {0, 0};
+  int count[2] = {0, 0};
+  std::size_t fewest = 1000, most = 0;
+  double worst_conditioning = 1.0;
+  for (std::size_t i = 0; i < b.s.owned(); ++i) {
+    if (!b.of_block(i)) continue;
+    const ReferenceSums<D> sums =
+        reference_sums<D>(b.refs, i, b.X.data(), b.s.x.data(), b.s.v.data());
+    const Mat<D> B = sums.moment.inverse();
+    const Mat<D> F = sums.position * B, dF = sums.velocity * B;
+    const int boundary = b.depth(i) < b.rc ? 1 : 0;
+    ++count[boundary];
+    err_f[boundary] = std::max(err_f[boundary], (F - A).cwiseAbs().maxCoeff());
+    err_df[boundary] = std::max(err_df[boundary], (dF - L * A).cwiseAbs().maxCoeff());
+    fewest = std::min(fewest, b.refs.size(i));
+    most = std::max(most, b.refs.size(i));
+    worst_conditioning = std::min(worst_conditioning, moment_conditioning<D>(sums.moment));
+  }
+  std::printf(
+      "%dD %s, %d interior and %d boundary particles (%zu to %zu reference neighbours, "
+      "conditioning >= %.3f): max |F - A| interior %.2e boundary %.2e; max |dF/dt - L A| "
+      "interior %.2e boundary %.2e\n",
+      D, kernel_name, count[0], count[1], fewest, most, worst_conditioning, err_f[0], err_f[1],
+      err_df[0], err_df[1]);
+  EXPECT_GT(count[0], 0);
+  EXPECT_GT(count[1], 0);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_LT(err_f[k], 1e-12);
+    EXPECT_LT(err_df[k], 1e-12);
+  }
+}
+
+TEST(TotalLagrangian, LinearDeformationGivesExactDeformationGradient2D) {
+  linear_fields_are_exact<2, WendlandC2<2>>("Wendland C2", {12, 9});
+  linear_fields_are_exact<2, QuinticSpline<2>>("quintic", {12, 9});
+}
+
+TEST(TotalLagrangian, LinearDeformationGivesExactDeformationGradient3D) {
+  linear_fields_are_exact<3, WendlandC2<3>>("Wendland C2", {9, 8, 7});
+}
+
+// P B of every particle of the block under the uniform deformation A, ghosts refreshed as the
+// unit does; then the internal force of each particle.
+template <int D, class K>
+std::vector<Vec<D>> internal_forces(Block<D, K>& b, const ElasticConstants& c, const Mat<D>& A) {
+  const Mat<D> P = first_piola<D>(c, A, Mat<D>::Zero());
+  for (std::size_t i = 0; i < b.s.owned(); ++i) {
+    b.PB[i] = Mat<D>::Zero();
+    if (!b.of_block(i)) continue;
+    const ReferenceSums<D> sums =
+        reference_sums<D>(b.refs, i, b.X.data(), b.s.x.data(), b.s.v.data());
+    b.PB[i] = P * sums.moment.inverse();
+  }
+  b.halo.update(b.s, {&b.PB});
+  std::vector<Vec<D>> f(b.s.owned(), Vec<D>::Zero());
+  for (std::size_t i = 0; i < b.s.owned(); ++i)
+    if (b.of_block(i)) f[i] = internal_force<D>(b.refs, i, b.PB.data(), b.s.m[i] / kRho0);
+  return f;
+}
+
+// Internal forces of a uniformly deformed block: they sum to zero (each pair's terms are
+// opposite), and in the deep interior (two supports from the surface: every neighbour has a
+// full support, so the same B) the corrected gradients of the lattice cancel. Their virial is
+// the stress times the volume, sum_a f_a (x) X_a = -P sum_a V0_a, exactly: symmetrised over the
+// pairs it is -1/2 sum_a V0_a P B_a M_a^T - (the same over b), and M_a is symmetric with
+// B_a = M_a^-1.
+template <int D>
+void uniform_deformation_conserves_momentum(const std::array<int, D>& n) {
+  const Mat<D> A = deformation<D>();
+  Block<D, WendlandC2<D>> b(
+      n, [&](const Vec<D>& X) -> Vec<D> { return A * X; },
+      [](const Vec<D>&) -> Vec<D> { return Vec<D>::Zero(); });
+  const ElasticConstants c =
+      ElasticConstants::from(2.0e6, 0.3975, kRho0, ElasticLawKind::kSaintVenantKirchhoff);
+  const std::vector<Vec<D>> f = internal_forces(b, c, A);
+  Vec<D> total = Vec<D>::Zero();
+  Mat<D> virial = Mat<D>::Zero();
+  double magnitude = 0, largest = 0, interior = 0, volume = 0;
+  int deep = 0;
+  for (std::size_t i = 0; i < b.s.owned(); ++i) {
+    if (!b.of_block(i)) continue;
+    total += f[i];
+    virial += f[i] * b.X[i].transpose();
+    volume += b.s.m[i] / kRho0;
+    magnitude += f[i].norm();
+    largest = std::max(largest, f[i].norm());
+    if (b.depth(i) >= 2.0 * b.rc) {
+      ++deep;
+      interior = std::max(interior, f[i].norm());
+    }
+  }
+  const Mat<D> P = first_piola<D>(c, A, Mat<D>::Zero());
+  const double err_virial = (virial + volume * P).norm() / (volume * P.norm());
+  std::printf(
+      "%dD uniform deformation: |sum f| / sum |f| = %.2e; %d deep interior particles, "
+      "max |f| there / max |f| = %.2e; virial + P V relative %.2e\n",
+      D, total.norm() / magnitude, deep, interior / largest, err_virial);
+  EXPECT_GT(deep, 0);
+  EXPECT_LT(total.norm(), 1e-13 * magnitude);
+  EXPECT_LT(interior, 1e-12 * largest);
+  EXPECT_LT(err_virial, 1e-12);
+}
+
+TEST(TotalLagrangian, UniformDeformationConservesMomentum2D) {
+  uniform_deformation_conserves_momentum<2>({16, 14});
+}
+
+TEST(TotalLagrangian, UniformDeformationConservesMomentum3D) {
+  uniform_deformation_conserves_momentum<3>({13, 12, 12});
+}
+
+// A bar stretched along x by 1% (uniaxial strain, P_xx > 0): its end particles accelerate
+// inwards, and the forces on the particles of the half beyond a section, which the other half
+// exerts across it, sum to -P_xx times the section's area. To rounding: where the bar is the
+// same along x (more than r_c from its ends), a pair at offset d crosses the section at
+// d_x / dx positions, so the pairs across it sum to (1/dx) sum over one column of
+// V0_a P B_a sum_b V0_b (X_a - X_b)_x grad0 W_ab = -(1/dx) sum V0_a P B_a M_a e_x = -P e_x A
+// (M_a is symmetric and B_a its inverse), and likewise for the B_b half.
+template <int D>
+void stretched_bar_contracts(const std::array<int, D>& n) {
+  Mat<D> A = Mat<D>::Identity();
+  A(0, 0) = 1.01;
+  Block<D, WendlandC2<D>> b(
+      n, [&](const Vec<D>& X) -> Vec<D> { return A * X; },
+      [](const Vec<D>&) -> Vec<D> { return Vec<D>::Zero(); });
+  const ElasticConstants c =
+      ElasticConstants::from(2.0e6, 0.3975, kRho0, ElasticLawKind::kSaintVenantKirchhoff);
+  const Mat<D> P = first_piola<D>(c, A, Mat<D>::Zero());
+  const std::vector<Vec<D>> f = internal_forces(b, c, A);
+  double left_end = 1e300, right_end = -1e300;
+  Vec<D> right_half = Vec<D>::Zero();
+  for (std::size_t i = 0; i < b.s.owned(); ++i) {
+    if (!b.of_block(i)) continue;
+    const double ax = f[i][0] / b.s.m[i];
+    if (b.X[i][0] < kDx) left_end = std::min(left_end, ax);
+    if (b.X[i][0] > b.extent[0] - kDx) right_end = std::max(right_end, ax);
+    if (b.X[i][0] > 0.5 * b.extent[0]) right_half += f[i];
+  }
+  double area = 1;
+  for (int a = 1; a < D; ++a) area *= b.extent[a];
+  const double expect = -P(0, 0) * area;
+  const double err = std::abs(right_half[0] / expect - 1.0);
+  std::printf(
+      "%dD bar stretched 1%%: a_x at the left end >= %.4g, at the right end <= %.4g m/s^2; "
+      "force across the middle section %.6g N, -P_xx A = %.6g N (error %.2e), "
+      "transverse %.2e N\n",
+      D, left_end, right_end, right_half[0], expect, err, right_half.tail(D - 1).norm());
+  EXPECT_GT(left_end, 0.0);
+  EXPECT_LT(right_end, 0.0);
+  EXPECT_LT(err, 1e-12);
+  EXPECT_LT(right_half.tail(D - 1).norm(), 1e-12 * std::abs(expect));
+}
+
+TEST(TotalLagrangian, StretchedBarContracts2D) {
+  stretched_bar_contracts<2>({40, 6});
+}
+
+TEST(TotalLagrangian, StretchedBarContracts3D) {
+  stretched_bar_contracts<3>({20, 5, 5});
+}
+
+}  // namespace
+}  // namespace sph
