@@ -185,6 +185,9 @@ void inline_point_files(v1::Case& c, const std::string& base_dir) {
     region(*c.mutable_walls(i)->mutable_shape(), "walls[" + std::to_string(i) + "].shape");
   for (int i = 0; i < c.bodies_size(); ++i)
     region(*c.mutable_bodies(i)->mutable_shape(), "bodies[" + std::to_string(i) + "].shape");
+  for (int i = 0; i < c.elastic_bodies_size(); ++i)
+    region(*c.mutable_elastic_bodies(i)->mutable_shape(),
+           "elastic_bodies[" + std::to_string(i) + "].shape");
   for (int i = 0; i < c.fluids_size(); ++i)
     inline_shape(*c.mutable_fluids(i)->mutable_shape(), base_dir,
                  "fluids[" + std::to_string(i) + "].shape", budget);
@@ -194,6 +197,9 @@ void inline_point_files(v1::Case& c, const std::string& base_dir) {
   for (int i = 0; i < c.bodies_size(); ++i)
     inline_shape(*c.mutable_bodies(i)->mutable_shape(), base_dir,
                  "bodies[" + std::to_string(i) + "].shape", budget);
+  for (int i = 0; i < c.elastic_bodies_size(); ++i)
+    inline_shape(*c.mutable_elastic_bodies(i)->mutable_shape(), base_dir,
+                 "elastic_bodies[" + std::to_string(i) + "].shape", budget);
 }
 
 v1::Case load_case_file(const std::string& path) {

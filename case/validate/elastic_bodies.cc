@@ -5,6 +5,7 @@
 #include "case/validate/validator.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <memory>
 
 #include "case/estimate.h"
@@ -71,10 +72,13 @@ void Validator::elastic_body(const v1::ElasticBody& b, const std::string& f) {
       }
   }
 
-  if (!b.has_shape())
+  if (!b.has_shape()) {
     error(cat(f, "shape"), "is required");
-  else
+  } else {
+    const std::size_t before = errors_.size();
     shape(b.shape(), cat(f, "shape"), true);
+    if (errors_.size() == before && c_.has_domain()) periodic_seam(b, f);
+  }
 
   // A SOLID material with both elastic constants (their ranges are checked with the
   // material); each missing one is named once, at the material.
@@ -136,6 +140,27 @@ void Validator::elastic_body(const v1::ElasticBody& b, const std::string& f) {
         error(g, "lies outside the domain" + domain_text());
     }
   }
+}
+
+// A ghost image across a periodic seam carries the reference position of the other side, so
+// a body within r_c of a periodic face would pair its particles with reference distances a
+// period off. Refused until the reference positions are wrapped too.
+void Validator::periodic_seam(const v1::ElasticBody& b, const std::string& f) {
+  const bool periodic[3] = {c_.periodic_x(), c_.periodic_y(), c_.periodic_z()};
+  const Aabb box = compile_shape(b.shape(), c_.dimension(), default_shell_thickness(c_))->bounds();
+  const Point3 lo = to_point(c_.domain().lo()), hi = to_point(c_.domain().hi());
+  const double rc = kernel_support_radius(c_);
+  for (int a = 0; a < c_.dimension(); ++a)
+    if (periodic[a] && (box.lo[a] < lo[a] + rc || box.hi[a] > hi[a] - rc)) {
+      char buf[400];
+      std::snprintf(buf, sizeof buf,
+                    "comes within the kernel support r_c = %g of the periodic faces along %c "
+                    "(the body spans [%g, %g], the domain [%g, %g]): elastic bodies across a "
+                    "periodic seam are not supported",
+                    rc, "xyz"[a], box.lo[a], box.hi[a], lo[a], hi[a]);
+      error(cat(f, "shape"), buf);
+      return;
+    }
 }
 
 std::vector<Validator::ConstraintCheck> Validator::constraint_checks(const LatticeSpec& spec,

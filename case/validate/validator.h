@@ -41,18 +41,19 @@ class Validator {
   bool within_bounds();  // top_level.cc: false if a bound of case_limits.h is broken
   void top_level();      // top_level.cc
   bool dimension_ok() const { return dim_ok_; }
-  void materials();                                                   // materials.cc
-  void fluid(const v1::FluidRegion& r, const std::string& f);         // fluids.cc
-  void wall(const v1::Wall& w, const std::string& f);                 // walls.cc
-  void body(const v1::RigidBody& b, const std::string& f);            // bodies.cc
-  void contact();                                                     // bodies.cc
-  void elastic_body(const v1::ElasticBody& b, const std::string& f);  // elastic_bodies.cc
-  void phase_transitions();                                           // phase_transitions.cc
-  void thermal();                                                     // thermal.cc
-  void open_boundaries();                                             // open_boundaries.cc
-  void run_settings();                                                // run_settings.cc
-  void probes();                                                      // probes.cc
-  void case_size();                                                   // case_size.cc
+  void materials();                                                    // materials.cc
+  void fluid(const v1::FluidRegion& r, const std::string& f);          // fluids.cc
+  void wall(const v1::Wall& w, const std::string& f);                  // walls.cc
+  void body(const v1::RigidBody& b, const std::string& f);             // bodies.cc
+  void contact();                                                      // bodies.cc
+  void elastic_body(const v1::ElasticBody& b, const std::string& f);   // elastic_bodies.cc
+  void periodic_seam(const v1::ElasticBody& b, const std::string& f);  // elastic_bodies.cc
+  void phase_transitions();                                            // phase_transitions.cc
+  void thermal();                                                      // thermal.cc
+  void open_boundaries();                                              // open_boundaries.cc
+  void run_settings();                                                 // run_settings.cc
+  void probes();                                                       // probes.cc
+  void case_size();                                                    // case_size.cc
 
   // Errors of a check outside this class (validate_reference, ...): through error(), or all
   // of them appended as they are.

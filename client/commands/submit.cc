@@ -45,6 +45,7 @@ int print_dry_run(const GlobalOptions& g, const v1::Case& c, const std::string& 
     f["fluid_particles"].set_number_value(e.fluid_particles);
     f["wall_particles"].set_number_value(e.wall_particles);
     f["rigid_particles"].set_number_value(e.rigid_particles);
+    f["elastic_particles"].set_number_value(e.elastic_particles);
     f["total_particles"].set_number_value(e.total());
     f["initial_dt"].set_number_value(e.initial_dt);
     f["dt_limited_by"].set_string_value(e.dt_limited_by);
@@ -55,8 +56,9 @@ int print_dry_run(const GlobalOptions& g, const v1::Case& c, const std::string& 
   }
   std::printf("case %s (%dD, dx = %g): valid, not submitted (--dry-run)\n", c.name().c_str(),
               c.dimension(), c.dx());
-  std::printf("  particles:  %.0f fluid, %.0f wall, %.0f rigid, %.0f total\n", e.fluid_particles,
-              e.wall_particles, e.rigid_particles, e.total());
+  std::printf("  particles:  %.0f fluid, %.0f wall, %.0f rigid, %.0f elastic, %.0f total\n",
+              e.fluid_particles, e.wall_particles, e.rigid_particles, e.elastic_particles,
+              e.total());
   std::printf("  time step:  %.4g s at rest (%s)\n", e.initial_dt, e.dt_limited_by.c_str());
   std::printf("  steps:      about %.0f to t = %g s\n", e.steps, c.time().end_time());
   std::printf("  memory:     about %s over all ranks\n", format_bytes(e.bytes).c_str());

@@ -31,7 +31,7 @@ struct MinRootSets {
 };
 
 template <int D>
-Mat<D> rotation_of(const RigidBody<D>& b) {
+RotationMatrix<D> rotation_of(const RigidBody<D>& b) {
   return b.orientation.matrix();
 }
 
@@ -241,7 +241,7 @@ std::string BodyRegrouping<D>::regroup(std::vector<Record>& recs,
         L += m * self * old[static_cast<std::size_t>(recs[a].old_body)].omega;
     }
     const bool pure = !has_new && only_one_old;
-    const Mat<D> R = nbody.orientation.matrix();
+    const RotationMatrix<D> R = nbody.orientation.matrix();
     nbody.mass = M;
     nbody.particles = static_cast<std::int64_t>(members.size());
     if constexpr (D == 2)

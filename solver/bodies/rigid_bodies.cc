@@ -168,7 +168,7 @@ void RigidBodies<D>::drift(double dt, double t_end) {
 
 template <int D>
 void RigidBodies<D>::place_owned_particles() {
-  std::vector<Mat<D>> R(bodies_.size());
+  std::vector<RotationMatrix<D>> R(bodies_.size());
   for (std::size_t k = 0; k < bodies_.size(); ++k) R[k] = bodies_[k].orientation.matrix();
   for (std::size_t i = 0; i < s_.owned(); ++i) {
     if (s_.kind[i] != Kind::kRigid) continue;
@@ -184,7 +184,7 @@ void RigidBodies<D>::place_owned_particles() {
 
 template <int D>
 void RigidBodies<D>::update_owned_velocities() {
-  std::vector<Mat<D>> R(bodies_.size());
+  std::vector<RotationMatrix<D>> R(bodies_.size());
   for (std::size_t k = 0; k < bodies_.size(); ++k) R[k] = bodies_[k].orientation.matrix();
   for (std::size_t i = 0; i < s_.owned(); ++i) {
     if (s_.kind[i] != Kind::kRigid) continue;
@@ -196,7 +196,7 @@ void RigidBodies<D>::update_owned_velocities() {
 template <int D>
 void RigidBodies<D>::reduce_fluid_forces(const Comm& comm) {
   const std::size_t per = D + A;
-  std::vector<Mat<D>> R(bodies_.size());
+  std::vector<RotationMatrix<D>> R(bodies_.size());
   for (std::size_t k = 0; k < bodies_.size(); ++k) R[k] = bodies_[k].orientation.matrix();
   const auto sums = exact_sum(
       bodies_.size() * per,

@@ -47,8 +47,9 @@ struct Orientation<3> {
   }
 };
 
+// A body's rotation matrix (aligned Eigen storage, unlike the columns' Mat<D> of types.h).
 template <int D>
-using Mat = Eigen::Matrix<double, D, D>;
+using RotationMatrix = Eigen::Matrix<double, D, D>;
 
 // omega x r (2D: omega about z).
 template <int D>

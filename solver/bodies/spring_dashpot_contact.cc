@@ -20,7 +20,7 @@ template <int D>
 void SpringDashpotContact<D>::evaluate(const NeighborList<D>& nl, const Comm& comm, double h) {
   auto& bs = bodies_.bodies();
   const std::size_t nb = bs.size();
-  std::vector<Mat<D>> R(nb);
+  std::vector<RotationMatrix<D>> R(nb);
   std::vector<Vec<D>> shift(nb);
   for (std::size_t k = 0; k < nb; ++k) {
     R[k] = bs[k].orientation.matrix();

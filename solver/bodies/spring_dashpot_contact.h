@@ -104,7 +104,7 @@ class SpringDashpotContact {
   bool walls_;
   double mu_, kt_;
   std::vector<Vec<D>> com0_;
-  std::vector<Mat<D>> R0_;
+  std::vector<RotationMatrix<D>> R0_;
   // Contact impulse of each body over the current fluid step (its mean force, see RigidBody).
   std::vector<Vec<D>> impulse_;
   std::vector<AngVec<D>> angular_impulse_;

@@ -251,7 +251,9 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
     const bool fluid = kind[i] == Kind::kFluid;
     const bool rigid = kind[i] == Kind::kRigid;
     const bool contacts = contact && rigid;
-    const bool all = fluid || (rigid && rigid_all);
+    // Elastic particles list every neighbour: their fluid ones for the wall condition and
+    // the coupling, the others for the total Lagrangian sums over their own body.
+    const bool all = fluid || (rigid && rigid_all) || kind[i] == Kind::kElastic;
     // With conduction, a wall's Dirichlet mirror value averages the rigid particles around it
     // too (see ScalarDiffusion::extrapolate_walls), so walls list them after their fluid.
     const bool wall_rigid = rigid_all && kind[i] == Kind::kWall;

@@ -33,6 +33,7 @@ SolidFractionScan solid_fraction(const ParticleStore<D>& s, const NeighborList<D
   // The objects around one particle: a few at most (a wall, a body, a second body); more
   // share the last slot, which can only make the guard more cautious.
   constexpr int kSlots = 8;
+  constexpr std::int64_t kElasticKey = -(std::int64_t{1} << 40);
   std::array<std::int64_t, kSlots> key{};
   std::array<double, kSlots> sum{};
   for (std::size_t i = 0; i < s.owned(); ++i) {
@@ -46,9 +47,11 @@ SolidFractionScan solid_fraction(const ParticleStore<D>& s, const NeighborList<D
     const double* w = pk.of(nl, i).w;
     for (const std::uint32_t* jp = solid; jp != nl.end(i); ++jp) {
       const std::uint32_t j = *jp;
-      // Walls are keys >= 0, bodies < 0.
-      const std::int64_t k = s.kind[j] == Kind::kWall ? (wall_index ? wall_index[j] : 0)
-                                                      : -1 - (body_index ? body_index[j] : 0);
+      // Walls are keys >= 0, rigid bodies < 0, and the elastic bodies one key below them all
+      // (taken together, which can only make the guard more cautious).
+      const std::int64_t k = s.kind[j] == Kind::kWall      ? (wall_index ? wall_index[j] : 0)
+                             : s.kind[j] == Kind::kElastic ? kElasticKey
+                                                           : -1 - (body_index ? body_index[j] : 0);
       int slot = 0;
       while (slot < used && key[static_cast<std::size_t>(slot)] != k) ++slot;
       if (slot == used) {

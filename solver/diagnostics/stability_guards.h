@@ -44,9 +44,10 @@ inline std::string format_vec(const double* x, int d) {
 template <int D>
 std::string describe_particle(const ParticleStore<D>& s, const std::vector<MaterialParams>& mats,
                               std::size_t i, std::int64_t step, double t) {
-  const char* kind = s.kind[i] == Kind::kFluid  ? "fluid"
-                     : s.kind[i] == Kind::kWall ? "wall"
-                                                : "rigid";
+  const char* kind = s.kind[i] == Kind::kFluid     ? "fluid"
+                     : s.kind[i] == Kind::kWall    ? "wall"
+                     : s.kind[i] == Kind::kElastic ? "elastic"
+                                                   : "rigid";
   std::string mat = s.material[i] < mats.size() ? mats[s.material[i]].name : "-";
   char buf[160];
   std::snprintf(buf, sizeof buf, " at particle id %lld (%s, material %s) at ",

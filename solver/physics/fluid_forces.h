@@ -46,7 +46,8 @@ struct FluidForceInputs {
   const Column<std::uint8_t>* free_slip = nullptr;     // per wall particle, or nullptr
   Column<Vec<D>>* transport = nullptr;                 // u~ (TVF)
   Column<Vec<D>>* background = nullptr;                // a~ (TVF)
-  Column<Vec<D>>* rigid_force = nullptr;  // fluid force on each rigid particle (output)
+  Column<Vec<D>>* rigid_force = nullptr;    // fluid force on each rigid particle (output)
+  Column<Vec<D>>* elastic_force = nullptr;  // fluid force on each elastic particle (output)
   // Filled by FluidForces::run: V_j = m_j / rho_j of every particle (owned and ghosts) and
   // 2 eta_a eta_b / (eta_a + eta_b) for each pair of fluid materials (row a, column b), so
   // the pair loop divides only where the pair itself needs it.
@@ -188,14 +189,19 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
 }
 
 // The force on each owned rigid particle from its fluid neighbours (Fuchs 2021 eq. 19):
-// f_r = -sum_i m_i a_ir with a_ir exactly the term fluid particle i receives from r.
+// f_r = -sum_i m_i a_ir with a_ir exactly the term fluid particle i receives from r. The same
+// for the particles of elastic bodies (thesis eqs. 3.12-3.13 with F^{F} = -F^{S}): forces
+// equal and opposite by construction. Each kind is written only where its column is given.
 template <int D, class K, bool kViscous, bool kArtVisc, bool kTransport>
-void compute_rigid_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, const K& /*kernel*/,
+void compute_solid_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, const K& /*kernel*/,
                             const FluidForceInputs<D>& in) {
   const auto& fl = *in.fluids;
-  Column<Vec<D>>& force = *in.rigid_force;
   for (std::size_t r = 0; r < s.owned(); ++r) {
-    if (s.kind[r] != Kind::kRigid) continue;
+    Column<Vec<D>>* const out = s.kind[r] == Kind::kRigid     ? in.rigid_force
+                                : s.kind[r] == Kind::kElastic ? in.elastic_force
+                                                              : nullptr;
+    if (!out) continue;
+    Column<Vec<D>>& force = *out;
     Vec<D> f = Vec<D>::Zero();
     const PairValues g = in.pairs->of(nl, r);
     const double *g_r = g.r, *g_dw = g.dw;
@@ -249,7 +255,7 @@ class FluidForces {
   }
   // Bytes of the per-particle scratch (V_j).
   std::size_t bytes() const { return volume_.capacity() * sizeof(double); }
-  // The reaction forces on rigid particles (in.rigid_force).
+  // The reaction forces on rigid and elastic particles (in.rigid_force, in.elastic_force).
   void run_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, const K& k,
                     const FluidForceInputs<D>& in) const {
     coupling_(s, nl, k, in);
@@ -275,10 +281,10 @@ class FluidForces {
   }
   static Fn pick_coupling(bool v, bool t) {
     if (v)
-      return t ? &compute_rigid_coupling<D, K, true, false, true>
-               : &compute_rigid_coupling<D, K, true, false, false>;
-    return t ? &compute_rigid_coupling<D, K, false, false, true>
-             : &compute_rigid_coupling<D, K, false, false, false>;
+      return t ? &compute_solid_coupling<D, K, true, false, true>
+               : &compute_solid_coupling<D, K, true, false, false>;
+    return t ? &compute_solid_coupling<D, K, false, false, true>
+             : &compute_solid_coupling<D, K, false, false, false>;
   }
   Fn fn_, coupling_;
   std::vector<double> volume_, eta_pair_;

@@ -184,6 +184,11 @@ class ScalarTransport final : public Unit<D> {
         if (!heat && b.has_initial_concentration()) return b.initial_concentration();
         return fallback;
       }
+      case Kind::kElastic: {  // conducts like a rigid body (thesis sec. 5.1)
+        const auto& b = c_.elastic_bodies(p.elastic);
+        if (heat && b.has_initial_temperature()) return b.initial_temperature();
+        return fallback;
+      }
       case Kind::kWall: {
         const auto& w = c_.walls(p.wall);
         if (heat && w.has_temperature()) return TimeFunction(w.temperature().value()).value(0.0);

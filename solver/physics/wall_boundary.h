@@ -1,7 +1,8 @@
 #pragma once
 // The generalized wall boundary condition of Adami, Hu, Adams (2012), applied to dummy wall
-// particles (and, later, to rigid-body particles, Fuchs 2021 "Boundary and coupling
-// conditions"). For each wall particle w with fluid neighbours f:
+// particles, rigid-body particles (Fuchs 2021 "Boundary and coupling conditions") and the
+// particles of elastic bodies (thesis sec. 2.5). For each wall particle w with fluid
+// neighbours f:
 //   p_w = (sum_f p_f W_wf + (g - a_w) . sum_f rho_f r_wf W_wf) / sum_f W_wf     (eq. 27)
 //   rho_w from p_w through the EOS of the neighbouring fluid                      (eq. 28)
 //   v_w' = 2 v_w - sum_f v_f W_wf / sum_f W_wf   for the viscous (no-slip) term  (eqs. 22-23)
@@ -94,7 +95,12 @@ class WallBoundary {
         continue;
       }
       Vec<D> acc = body;
-      if (wall_accel) acc -= (*wall_accel)[w];
+      // An elastic particle's own acceleration is its a^n (the fluid sees the structure as a
+      // moving wall, Zhang, Rezavand, Hu 2021; thesis eq. 3.14).
+      if (s_.kind[w] == Kind::kElastic)
+        acc -= s_.a[w];
+      else if (wall_accel)
+        acc -= (*wall_accel)[w];
       vext_[w] = 2.0 * s_.v[w] - sv / sw;
       if (!mixed) {
         const double pw = (sp + acc.dot(srho)) / sw;

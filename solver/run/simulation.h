@@ -198,6 +198,7 @@ class Simulation {
   // Columns of the heat conduction and species diffusion units (solver/physics/
   // scalar_transport.h), which phase transitions and open boundaries read and set.
   Column<double>* temperature_ = nullptr;
+  Column<Vec<D>>* elastic_force_ = nullptr;  // fluid force on elastic particles (coupling)
   Column<double>* concentration_ = nullptr;
   Column<std::uint16_t>* wall_index_ = nullptr;
   std::optional<SpringDashpotContact<D>> contact_;

@@ -168,7 +168,8 @@ void Simulation<D, K>::start() {
                             detail::to_vec<D>(c_.domain().hi()), grid_.periodic, 0, 0.0);
       dt_ = c_.time().fixed_dt() > 0
                 ? c_.time().fixed_dt()
-                : bound_->dt(comm_.max(scan.max_speed), comm_.max(scan.max_acceleration));
+                : std::min(bound_->dt(comm_.max(scan.max_speed), comm_.max(scan.max_acceleration)),
+                           unit_set_.max_time_step());
       dt0_ = dt_;
     }
     if (walls_) solid_fraction_ = comm_.max(scan_solid_fraction().max);
@@ -287,7 +288,8 @@ typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
   StepReport rep{e.violated, e.cancel, e.interrupt, e.checkpoint, e.out_of_time, e.diagnosis};
   if (e.violated) return rep;
   if (c_.time().fixed_dt() <= 0) {
-    dt_ = bound_->dt(e.max_speed, e.max_acceleration);
+    // The units' bounds may change from step to step (the elastic solid's, thesis eq. 33).
+    dt_ = std::min(bound_->dt(e.max_speed, e.max_acceleration), unit_set_.max_time_step());
     if (dt_ < guards_.min_dt_fraction * dt0_) {
       char buf[200];
       std::snprintf(buf, sizeof buf,
@@ -439,6 +441,12 @@ void Simulation<D, K>::compute_fluid_forces() {
     in.rigid_force = &bodies_->fluid_force();
     forces_->run_coupling(s_, nl_, kernel_, in);
     bodies_->reduce_fluid_forces(comm_);
+    in.rigid_force = nullptr;
+  }
+  if (elastic_force_) {
+    Timer tc(timer("elastic_coupling"));
+    in.elastic_force = elastic_force_;
+    forces_->run_coupling(s_, nl_, kernel_, in);
   }
 }
 

@@ -78,6 +78,13 @@ void Simulation<D, K>::build_units() {
       units_.push_back(SpringDashpotContact<D>::kName);
     }
   }
+  if (c_.elastic_bodies_size() > 0) {
+    units_.push_back("elastic_coupling");
+    if (!walls_) {  // elastic particles are moving walls to the fluid (thesis sec. 2.5)
+      walls_.emplace(s_, fluids_);
+      units_.push_back(WallBoundary<D>::kName);
+    }
+  }
   bool viscous = false;
   double c_max = 0, nu_max = 0;
   for (const auto& f : fluids_) {
@@ -152,6 +159,9 @@ void Simulation<D, K>::build_seam_units() {
     u->declare_output(recorder_.result());
   }
   bound_->add_limit(unit_set_.max_time_step());
+  // Written by the fluid-solid coupling, read by the elastic unit (solver/elastic/).
+  if (s_.has("elastic_fluid_force"))
+    elastic_force_ = &s_.template get<Vec<D>>("elastic_fluid_force");
   if (s_.has("temperature")) temperature_ = &s_.template get<double>("temperature");
   if (s_.has("concentration")) concentration_ = &s_.template get<double>("concentration");
 }

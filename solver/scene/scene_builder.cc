@@ -1,5 +1,6 @@
 #include "solver/scene/scene_builder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <unordered_set>
@@ -16,6 +17,12 @@ SceneBuilder::SceneBuilder(const v1::Case& c, const std::vector<MaterialParams>&
   for (const auto& w : c.walls()) walls_.push_back(compile_shape(w.shape(), d, shell));
   for (const auto& b : c.bodies()) bodies_.push_back(compile_shape(b.shape(), d, shell));
   for (const auto& f : c.fluids()) fluids_.push_back(compile_shape(f.shape(), d, shell));
+  for (const auto& e : c.elastic_bodies()) {
+    elastic_.push_back(compile_shape(e.shape(), d, shell));
+    constraints_.emplace_back();
+    for (const auto& k : e.constraints())
+      constraints_.back().push_back(compile_shape(k.region(), d, shell));
+  }
   for (const auto& o : c.open_boundaries()) {
     v1::Shape box;
     *box.mutable_box() = o.region();
@@ -27,6 +34,43 @@ SceneBuilder::SceneBuilder(const v1::Case& c, const std::vector<MaterialParams>&
       break;
     }
 }
+
+namespace {
+
+// The initial velocity of a fluid region or elastic body at x: uniform plus its field.
+Point3 initial_velocity(const Point3& uniform, const v1::VelocityField& field, const Point3& x) {
+  Point3 v = uniform;
+  if (field.has_taylor_green()) {
+    const auto& tg = field.taylor_green();
+    const double k = 2.0 * std::numbers::pi / tg.wavelength();
+    v.x() -= tg.amplitude() * std::cos(k * x.x()) * std::sin(k * x.y());
+    v.y() += tg.amplitude() * std::sin(k * x.x()) * std::cos(k * x.y());
+  }
+  if (field.has_linear()) {
+    const auto& lf = field.linear();
+    const Point3 r = x - to_point(lf.center());
+    v.x() += to_point(lf.gradient_x()).dot(r);
+    v.y() += to_point(lf.gradient_y()).dot(r);
+    v.z() += to_point(lf.gradient_z()).dot(r);
+  }
+  if (field.has_beam_mode()) {
+    // First clamped-free bending mode of an Euler-Bernoulli beam (thesis digest sec. 8.4,
+    // eq. 40), scaled to the tip velocity.
+    const auto& bm = field.beam_mode();
+    const Point3 axis = to_point(bm.axis()).normalized();
+    const Point3 dir = to_point(bm.direction()).normalized();
+    const double L = bm.length(), kL = 1.875, k = kL / L;
+    const auto shape = [&](double s) {
+      return (std::cos(kL) + std::cosh(kL)) * (std::cosh(k * s) - std::cos(k * s)) +
+             (std::sin(kL) - std::sinh(kL)) * (std::sinh(k * s) - std::sin(k * s));
+    };
+    const double s = std::clamp((x - to_point(bm.root())).dot(axis), 0.0, L);
+    v += bm.tip_velocity() * shape(s) / shape(L) * dir;
+  }
+  return v;
+}
+
+}  // namespace
 
 void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn) const {
   const int d = c_.dimension();
@@ -86,6 +130,37 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
     });
   }
 
+  // Elastic bodies take the lattice points left by walls and rigid bodies (and by earlier
+  // elastic bodies); fluids fill around them.
+  for (std::size_t e = 0; e < elastic_.size(); ++e) {
+    const auto& body = c_.elastic_bodies(static_cast<int>(e));
+    SceneParticle p;
+    p.kind = Kind::kElastic;
+    p.elastic = static_cast<std::int32_t>(e);
+    const int mi = material_index(mats_, body.material());
+    p.material = static_cast<std::uint16_t>(mi);
+    p.rho = wall_rho_;  // a dummy density for the fluid (the wall condition overwrites it)
+    p.mass = mats_[static_cast<std::size_t>(mi)].rho0 * vol;
+    for_each_lattice_point(*elastic_[e], spec, clip, [&](const Point3& x) {
+      for (const auto& w : walls_)
+        if (w->contains(x)) return;
+      for (const auto& b : bodies_)
+        if (b->contains(x)) return;
+      if (!claimed.empty() && claimed.count(lattice_key(x))) return;
+      for (std::size_t k = 0; k < e; ++k)
+        if (elastic_[k]->contains(x)) return;
+      p.x = x;
+      p.constraint = -1;
+      for (std::size_t k = 0; k < constraints_[e].size() && p.constraint < 0; ++k)
+        if (constraints_[e][k]->contains(x)) p.constraint = static_cast<std::int32_t>(k);
+      // Constrained particles start at rest (or with their motion, set by the elastic unit).
+      p.v = p.constraint < 0 ? initial_velocity(to_point(body.initial_velocity()),
+                                                body.initial_velocity_field(), x)
+                             : Point3::Zero();
+      fn(p);
+    });
+  }
+
   // SplitMix64: a well-mixed, reproducible pseudo-random value per particle.
   auto unit_random = [](std::uint64_t k) {
     k += 0x9E3779B97F4A7C15ull;
@@ -110,6 +185,8 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
         if (w->contains(x)) return;
       for (const auto& b : bodies_)
         if (b->contains(x)) return;
+      for (const auto& b : elastic_)
+        if (b->contains(x)) return;
       if (!claimed.empty() && claimed.count(lattice_key(x))) return;
       for (std::size_t k = 0; k < f; ++k)
         if (fluids_[k]->contains(x)) return;
@@ -121,22 +198,8 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
           p.x[a] += region.position_jitter() * dx *
                     unit_random(3 * counter + static_cast<std::uint64_t>(a));
       ++counter;
-      p.v = to_point(region.initial_velocity());
-      if (region.initial_velocity_field().has_taylor_green()) {
-        const auto& tg = region.initial_velocity_field().taylor_green();
-        const double k = 2.0 * std::numbers::pi / tg.wavelength();
-        p.v.x() -= tg.amplitude() * std::cos(k * p.x.x()) * std::sin(k * p.x.y());
-        p.v.y() += tg.amplitude() * std::sin(k * p.x.x()) * std::cos(k * p.x.y());
-      }
-      if (region.initial_velocity_field().has_linear()) {
-        const auto& lf = region.initial_velocity_field().linear();
-        const Point3 r = p.x - to_point(lf.center());
-        const Point3 gx = to_point(lf.gradient_x()), gy = to_point(lf.gradient_y()),
-                     gz = to_point(lf.gradient_z());
-        p.v.x() += gx.dot(r);
-        p.v.y() += gy.dot(r);
-        p.v.z() += gz.dot(r);
-      }
+      p.v = initial_velocity(to_point(region.initial_velocity()), region.initial_velocity_field(),
+                             p.x);
       p.rho = m.rho0;
       if (region.has_hydrostatic_surface() && g.norm() > 0) {
         // p = rho0 |g| (surface - height), height measured along -g; the density follows
@@ -165,6 +228,8 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
       for (const auto& w : walls_)
         if (w->contains(x)) return;
       for (const auto& b : bodies_)
+        if (b->contains(x)) return;
+      for (const auto& b : elastic_)
         if (b->contains(x)) return;
       if (!claimed.empty() && claimed.count(lattice_key(x))) return;
       for (std::size_t k = 0; k < o; ++k)

@@ -19,10 +19,12 @@ namespace sph {
 struct SceneParticle {
   Kind kind = Kind::kFluid;
   std::uint16_t material = kNoMaterial;
-  std::uint16_t wall = 0;    // index of the wall (walls only)
-  std::int32_t body = -1;    // index of the rigid body (rigid particles only)
-  std::int32_t region = -1;  // index of the fluid region (fluid particles only)
-  std::int32_t open = -1;    // index of the open boundary (buffer particles only)
+  std::uint16_t wall = 0;        // index of the wall (walls only)
+  std::int32_t body = -1;        // index of the rigid body (rigid particles only)
+  std::int32_t region = -1;      // index of the fluid region (fluid particles only)
+  std::int32_t open = -1;        // index of the open boundary (buffer particles only)
+  std::int32_t elastic = -1;     // index of the elastic body (elastic particles only)
+  std::int32_t constraint = -1;  // index of that body's constraint holding it, or -1 (free)
   Point3 x = Point3::Zero();
   Point3 v = Point3::Zero();
   double rho = 1, mass = 1;
@@ -39,7 +41,8 @@ class SceneBuilder {
  private:
   const v1::Case& c_;
   const std::vector<MaterialParams>& mats_;
-  std::vector<std::unique_ptr<Shape>> walls_, bodies_, fluids_, opens_;
+  std::vector<std::unique_ptr<Shape>> walls_, bodies_, fluids_, opens_, elastic_;
+  std::vector<std::vector<std::unique_ptr<Shape>>> constraints_;  // per elastic body
   double wall_rho_ = 1;
 };
 

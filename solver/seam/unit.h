@@ -34,7 +34,9 @@ class Unit {
   virtual PhaseMask phases() const = 0;
   // Runs the unit's work of `phase` on the owned particles (collective where it exchanges).
   virtual void run(StepPhase phase, StepContext<D>& ctx) = 0;
-  // The largest time step the unit allows, independent of the flow (infinity: no bound).
+  // The largest time step the unit allows (infinity: no bound). Read after every step; a bound
+  // that depends on the state (the elastic solid's, from its speeds) is computed in run() and
+  // reduced over the ranks there, so every rank returns the same value.
   virtual double max_time_step() const { return std::numeric_limits<double>::infinity(); }
   // Scratch storage beyond its columns (the columns are counted with the particle store).
   virtual std::size_t scratch_bytes() const { return 0; }

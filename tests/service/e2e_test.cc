@@ -277,7 +277,7 @@ TEST(ServiceEndToEnd, SphctlExitCodesAndOutputs) {
   h.start_server();
   const auto dry = h.sphctl({"submit", test_case_path("tiny_dam_break_2d.textproto"), "--dry-run"});
   EXPECT_EQ(dry.exit_code, 0);
-  EXPECT_NE(dry.out.find("150 fluid, 456 wall, 0 rigid, 606 total"), std::string::npos) << dry.out;
+  EXPECT_NE(dry.out.find("150 fluid, 456 wall, 0 rigid, 0 elastic, 606 total"), std::string::npos) << dry.out;
   EXPECT_NE(dry.out.find("steps:"), std::string::npos);
   EXPECT_NE(dry.out.find("memory:"), std::string::npos);
   EXPECT_TRUE(h.sphctl({"list", "--json"}).out.find("\"jobs\":[]") != std::string::npos)

@@ -195,7 +195,7 @@ TEST(CaseValidationCost, ErrorsAreCapped) {
 // order as estimate_case counts them (walls each on their own, bodies outside walls, buffers
 // outside both, fluids outside all three; explicit points all).
 struct Counts {
-  double walls = 0, bodies = 0, fluids = 0;
+  double walls = 0, bodies = 0, elastic = 0, fluids = 0;
 };
 Counts exact_counts(const v1::Case& c) {
   const int d = c.dimension();
@@ -203,9 +203,10 @@ Counts exact_counts(const v1::Case& c) {
   const LatticeSpec spec{d, c.dx(), to_point(c.lattice_origin())};
   Aabb clip{to_point(c.domain().lo()), to_point(c.domain().hi())};
   if (d == 2) clip.lo.z() = clip.hi.z() = 0;
-  std::vector<std::unique_ptr<Shape>> walls, bodies, buffers;
+  std::vector<std::unique_ptr<Shape>> walls, bodies, elastic, buffers;
   for (const auto& w : c.walls()) walls.push_back(compile_shape(w.shape(), d, shell));
   for (const auto& b : c.bodies()) bodies.push_back(compile_shape(b.shape(), d, shell));
+  for (const auto& b : c.elastic_bodies()) elastic.push_back(compile_shape(b.shape(), d, shell));
   for (const auto& o : c.open_boundaries()) {
     v1::Shape box;
     *box.mutable_box() = o.region();
@@ -229,9 +230,10 @@ Counts exact_counts(const v1::Case& c) {
   Counts n;
   for (const auto& w : walls) n.walls += count(*w, {});
   for (const auto& b : bodies) n.bodies += count(*b, {&walls});
-  for (const auto& o : buffers) n.fluids += count(*o, {&walls, &bodies});
+  for (const auto& b : elastic) n.elastic += count(*b, {&walls, &bodies});
+  for (const auto& o : buffers) n.fluids += count(*o, {&walls, &bodies, &elastic});
   for (const auto& f : c.fluids())
-    n.fluids += count(*compile_shape(f.shape(), d, shell), {&walls, &bodies, &buffers});
+    n.fluids += count(*compile_shape(f.shape(), d, shell), {&walls, &bodies, &elastic, &buffers});
   return n;
 }
 
@@ -262,6 +264,7 @@ TEST(CaseValidationCost, ShippedCasesAreCountedExactly) {
     const Counts n = exact_counts(c);
     EXPECT_EQ(e.wall_particles, n.walls) << f.filename();
     EXPECT_EQ(e.rigid_particles, n.bodies) << f.filename();
+    EXPECT_EQ(e.elastic_particles, n.elastic) << f.filename();
     EXPECT_EQ(e.fluid_particles, n.fluids) << f.filename();
   }
   std::printf("the costliest shipped estimate: %s, %.3g units (budget %.3g)\n", costliest.c_str(),
