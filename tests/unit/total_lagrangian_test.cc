@@ -3,6 +3,8 @@
 // gradient and its rate are exact for linear fields on every particle, interior and boundary
 // alike; the internal forces of a uniformly deformed block sum to zero and vanish in its
 // interior; a stretched bar pulls its ends inwards with the force P A across any section.
+// Then the unit that runs them (solver/elastic/elastic_solid.h) on the same blocks: its
+// accelerations, time-step bound, gravity, constraints and guards.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,9 +13,12 @@
 #include <functional>
 #include <vector>
 
+#include "case/materials.h"
 #include "solver/core/kernel.h"
 #include "solver/core/neighbor_list.h"
+#include "solver/core/pair_kernel.h"
 #include "solver/elastic/elastic_law.h"
+#include "solver/elastic/elastic_solid.h"
 #include "solver/elastic/total_lagrangian.h"
 #include "solver/parallel/halo.h"
 
@@ -303,6 +308,191 @@ TEST(TotalLagrangian, StretchedBarContracts2D) {
 
 TEST(TotalLagrangian, StretchedBarContracts3D) {
   stretched_bar_contracts<3>({20, 5, 5});
+}
+
+// The elastic solid unit on a block of the tests above: a case with one SOLID material of the
+// plate benchmark and the blocks' two elastic bodies, built as make_units builds it.
+struct UnitCase {
+  UnitCase(bool gravity, bool clamp) {
+    auto* m = c.add_materials();
+    m->set_name("plate");
+    m->set_phase(v1::SOLID);
+    m->set_density(kRho0);
+    m->set_youngs_modulus(2.0e6);
+    m->set_poisson_ratio(0.3975);
+    auto* e = c.add_elastic_bodies();
+    e->set_name("bar");
+    e->set_material("plate");
+    if (clamp) e->add_constraints();
+    auto* beside = c.add_elastic_bodies();  // the blocks' body 1
+    beside->set_name("beside");
+    beside->set_material("plate");
+    if (gravity) c.mutable_gravity()->mutable_acceleration()->set_y(-9.81);
+    c.mutable_time()->set_cfl_factor(0.5);
+    mats = resolve_materials(c);
+  }
+  v1::Case c;
+  std::vector<MaterialParams> mats;
+  std::vector<FluidConstants> fluids;
+};
+
+template <int D>
+struct UnitOnBlock {
+  using Solid = ElasticSolid<D, WendlandC2<D>>;
+  UnitOnBlock(Block<D, WendlandC2<D>>& b, const UnitCase& uc)
+      : unit(UnitBuildContext<D>{uc.c, uc.mats, uc.fluids, b.s, kDx, 1.3 * kDx, std::pow(kDx, D),
+                                 b.kernel.W(0.0), uc.c.time().cfl_factor(), nullptr}),
+        ctx{b.s, b.nl, pairs, b.halo, b.comm, 0.0, 0.0, 0} {
+    pairs.prepare(b.s, b.nl, b.kernel);
+    auto& constraint = b.s.template get<std::int32_t>("elastic_constraint");
+    for (std::size_t i = 0; i < b.s.size(); ++i) constraint[i] = -1;
+    for (std::size_t i = 0; i < b.s.owned(); ++i) b.s.a[i] = Vec<D>::Zero();
+  }
+  PairKernel<D> pairs;
+  Solid unit;
+  StepContext<D> ctx;
+};
+
+// A stretched bar: the unit's accelerations are the operators' internal forces over the mass,
+// and its time-step bound is thesis eq. 33 with the largest of them.
+TEST(ElasticSolidUnit, AcceleratesAsTheOperatorsAndBoundsTheStep) {
+  Mat<2> A = Mat<2>::Identity();
+  A(0, 0) = 1.01;
+  Block<2, WendlandC2<2>> b(
+      {40, 6}, [&](const Vec<2>& X) -> Vec<2> { return A * X; },
+      [](const Vec<2>&) -> Vec<2> { return Vec<2>::Zero(); });
+  const UnitCase uc(false, false);
+  UnitOnBlock<2> u(b, uc);
+  EXPECT_EQ(u.unit.phases(), phase_bit(StepPhase::kForces));
+  u.unit.run(StepPhase::kForces, u.ctx);
+  EXPECT_EQ(u.unit.check(u.ctx), "");
+  const ElasticConstants& law = u.unit.constants(0);
+  const std::vector<Vec<2>> f = internal_forces(b, law, A);
+  double err = 0, largest = 0;
+  for (std::size_t i = 0; i < b.s.owned(); ++i) {
+    if (b.s.kind[i] != Kind::kElastic) {
+      EXPECT_EQ(b.s.a[i], Vec<2>::Zero());
+      continue;
+    }
+    if (!b.of_block(i)) continue;
+    largest = std::max(largest, b.s.a[i].norm());
+    err = std::max(err, (b.s.a[i] - f[i] / b.s.m[i]).norm());
+  }
+  const double h = 1.3 * kDx;
+  const double expect_dt = 0.5 * 0.6 * std::min(std::sqrt(h / largest), h / law.sound_speed);
+  std::printf(
+      "unit on a stretched bar: max |a - f/m| / max |a| = %.2e; dt bound %.6g s "
+      "(eq. 33: %.6g s)\n",
+      err / largest, u.unit.max_time_step(), expect_dt);
+  EXPECT_LT(err, 1e-10 * largest);
+  EXPECT_NEAR(u.unit.max_time_step(), expect_dt, 1e-15 * expect_dt);
+}
+
+// At rest under gravity every particle falls with g (the internal forces of F = I vanish);
+// clamped particles (constraint 0, no motion) get a = 0 and are put back at their reference
+// position at rest; those of constraint 1 (moving at 0.2 m/s along x) get a = 0 and are put
+// where the motion takes them, X + 0.2 t e_x, with its velocity.
+template <int D>
+void gravity_and_constraints(const std::array<int, D>& n) {
+  Block<D, WendlandC2<D>> b(
+      n, [](const Vec<D>& X) -> Vec<D> { return X; },
+      [](const Vec<D>&) -> Vec<D> { return Vec<D>::Zero(); });
+  UnitCase uc(true, true);
+  uc.c.mutable_elastic_bodies(0)
+      ->add_constraints()
+      ->mutable_motion()
+      ->mutable_velocity_x()
+      ->set_constant(0.2);
+  UnitOnBlock<D> u(b, uc);
+  EXPECT_EQ(u.unit.phases(),
+            phases(StepPhase::kAfterDrift, StepPhase::kForces, StepPhase::kConstraints));
+  auto& constraint = b.s.template get<std::int32_t>("elastic_constraint");
+  std::size_t held = 0, moved = 0;
+  for (std::size_t i = 0; i < b.s.owned(); ++i) {
+    if (!b.of_block(i)) continue;
+    if (b.X[i][0] < kDx) {
+      constraint[i] = 0;
+      ++held;
+    } else if (b.X[i][0] > b.extent[0] - kDx) {
+      constraint[i] = 1;
+      ++moved;
+    }
+  }
+  u.unit.run(StepPhase::kForces, u.ctx);
+  Vec<D> g = Vec<D>::Zero();
+  g[1] = -9.81;
+  double err = 0;
+  for (std::size_t i = 0; i < b.s.owned(); ++i)
+    if (b.of_block(i)) err = std::max(err, (b.s.a[i] - g).norm());
+  u.unit.run(StepPhase::kConstraints, u.ctx);
+  for (std::size_t i = 0; i < b.s.owned(); ++i)
+    if (b.of_block(i) && constraint[i] >= 0) {
+      EXPECT_EQ(b.s.a[i], Vec<D>::Zero());
+      b.s.x[i] += Vec<D>::Constant(1e-4);
+      b.s.v[i] = Vec<D>::Constant(0.3);
+    }
+  u.ctx.t = 0.5;
+  u.unit.run(StepPhase::kAfterDrift, u.ctx);
+  double err_moved = 0;
+  for (std::size_t i = 0; i < b.s.owned(); ++i) {
+    if (!b.of_block(i) || constraint[i] < 0) continue;
+    Vec<D> x = b.X[i], v = Vec<D>::Zero();
+    if (constraint[i] == 1) {
+      x[0] += 0.2 * 0.5;
+      v[0] = 0.2;
+    }
+    err_moved = std::max({err_moved, (b.s.x[i] - x).norm(), (b.s.v[i] - v).norm()});
+    if (constraint[i] == 0) {
+      EXPECT_EQ(b.s.x[i], b.X[i]);
+      EXPECT_EQ(b.s.v[i], Vec<D>::Zero());
+    }
+  }
+  std::printf(
+      "%dD block at rest under gravity: max |a - g| = %.2e m/s^2; %zu clamped and %zu "
+      "moving particles, max error of their x and v %.2e\n",
+      D, err, held, moved, err_moved);
+  std::size_t section = 1;
+  for (int a = 1; a < D; ++a) section *= static_cast<std::size_t>(n[static_cast<std::size_t>(a)]);
+  EXPECT_EQ(held, section);
+  EXPECT_EQ(moved, section);
+  EXPECT_LT(err, 1e-6 * 9.81);
+  EXPECT_LT(err_moved, 1e-15);
+}
+
+TEST(ElasticSolidUnit, GravityAndConstraints2D) {
+  gravity_and_constraints<2>({10, 6});
+}
+
+TEST(ElasticSolidUnit, GravityAndConstraints3D) {
+  gravity_and_constraints<3>({8, 5, 4});
+}
+
+// The guards: a mirrored block (det F = -1) is inverted; a single row of particles has its
+// reference neighbours on a line, a singular correction matrix. Both name the body and the
+// particle.
+TEST(ElasticSolidUnit, GuardsNameInvertedAndTornParticles) {
+  const UnitCase uc(false, false);
+  {
+    Block<2, WendlandC2<2>> b(
+        {8, 6}, [](const Vec<2>& X) -> Vec<2> { return Vec<2>(0.02 - X[0], X[1]); },
+        [](const Vec<2>&) -> Vec<2> { return Vec<2>::Zero(); });
+    UnitOnBlock<2> u(b, uc);
+    u.unit.run(StepPhase::kForces, u.ctx);
+    const std::string why = u.unit.check(u.ctx);
+    std::printf("mirrored block: %s\n", why.c_str());
+    EXPECT_NE(why.find("elastic body bar: inverted particle (det F = -1"), std::string::npos);
+    EXPECT_NE(why.find("at particle id"), std::string::npos);
+  }
+  {
+    Block<2, WendlandC2<2>> b(
+        {8, 1}, [](const Vec<2>& X) -> Vec<2> { return X; },
+        [](const Vec<2>&) -> Vec<2> { return Vec<2>::Zero(); });
+    UnitOnBlock<2> u(b, uc);
+    u.unit.run(StepPhase::kForces, u.ctx);
+    const std::string why = u.unit.check(u.ctx);
+    std::printf("one row of particles: %s\n", why.c_str());
+    EXPECT_NE(why.find("elastic body bar: singular correction matrix"), std::string::npos);
+  }
 }
 
 }  // namespace

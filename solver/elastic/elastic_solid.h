@@ -1,0 +1,434 @@
+#pragma once
+// Elastic bodies by total Lagrangian SPH (X. Tang's thesis sec. 3, digest sec. 3; P-I sec. 3),
+// a unit on the seam (solver/seam/unit.h). Each step, at the positions of the search:
+//
+//   kForces      reference neighbours of every owned elastic particle (the same body within r_c
+//                in the reference configuration, found in the neighbour list; see
+//                solver/elastic/total_lagrangian.h for why), the correction matrix B (eq. 3.7),
+//                F (eq. 3.10) and dF/dt (P-I eq. 35), the first Piola-Kirchhoff stress P of the
+//                body's material (solver/elastic/elastic_law.h, Kelvin-Voigt damping included),
+//                P B to the ghosts, then
+//                  a_a += (1/m_a) sum_b V0_a V0_b (P_a B_a + P_b B_b) grad0 W_ab   (eqs. 3.8-3.9)
+//                         + f_a^fluid / m_a + g
+//                with f^fluid the fluid's pressure and viscous force on the particle, which the
+//                fluid-solid coupling (thesis sec. 2.5) writes into the column
+//                "elastic_fluid_force" before the units of this phase run (the thesis adds the
+//                coupling terms of eqs. 3.12-3.13 as they are, but they are forces: divided by
+//                m_a here, erratum 3 of the digest), and g gravity (ramped as the fluid's,
+//                Adami 2012 eq. 13) unless the body ignores it. The fluid's constant body force
+//                does not act on solids.
+//   kConstraints particles of a constraint get a = 0: clamped ones stay where they were put at
+//                rest, prescribed ones move as kAfterDrift sets them.
+//   kAfterDrift  particles of a constraint with a motion are put at x(t), v(t) of the motion
+//                (case/motion.h, as walls are moved: solver/physics/wall_motion.h); clamped ones
+//                at their reference position with v = 0.
+//
+// The kick-drift-kick integrator (solver/integrate/kick_drift_kick.h) advances owned elastic
+// particles like fluid ones, which is the thesis' position-based Verlet (P-I eqs. 36-38) in
+// kick-drift-kick form; F is not integrated but recomputed from the positions every step
+// (eq. 3.10), so it needs no state of its own.
+//
+// Time step (thesis eq. 33, P-I sec. 3.4):
+//   dt <= cfl_factor 0.6 min(sqrt(h / |a|max), h / (|v|max + c_s)),
+// with c_s = sqrt(K / rho0) the largest of the bodies' materials and the maxima over the free
+// elastic particles (speeds of the constrained ones too) of all ranks: a maximum is exact, so
+// the bound is the same on any rank count.
+//
+// Output: snapshot fields "elastic_displacement_x/_y/_z" (x - X), "von_mises_stress" (of the
+// Cauchy stress; plane strain in 2D) and "elastic_strain" (equivalent strain of the
+// Green-Lagrange strain), zero on other particles; series "elastic/<body>/displacement" (the
+// displacement of the particle nearest each ElasticBody.observation_points entry in the
+// reference configuration, ties to the smallest id), "elastic/<body>/kinetic_energy" and
+// "elastic/<body>/strain_energy" (sum of V0 Psi(F)), summed exactly (solver/parallel/exact_sum.h)
+// so that they are bitwise the same on any rank count.
+//
+// Guard: a particle whose correction matrix is singular (it lost the reference neighbours that
+// span the space: a torn body) or whose F is inverted (det F <= 0) stops the run, naming the
+// body, the particle and the place.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "case/motion.h"
+#include "solver/diagnostics/stability_guards.h"
+#include "solver/elastic/elastic_law.h"
+#include "solver/elastic/total_lagrangian.h"
+#include "solver/parallel/exact_sum.h"
+#include "solver/physics/body_force.h"
+#include "solver/run/unit_set.h"
+
+namespace sph {
+
+template <int D, class K>
+class ElasticSolid final : public Unit<D> {
+ public:
+  static constexpr const char* kName = "elastic_solid";
+  // moment_conditioning (total_lagrangian.h) below which a correction matrix counts as
+  // singular: above 0.8 at the corners of lattice blocks, 0 with the reference neighbours all on
+  // one line (plane in 3D).
+  static constexpr double kMinConditioning = 1e-3;
+  // Thesis eq. 33.
+  static constexpr double kTimeStepFactor = 0.6;
+
+  explicit ElasticSolid(const UnitBuildContext<D>& b);
+
+  const char* name() const override { return kName; }
+  PhaseMask phases() const override {
+    return constrained_ ? kConstrainedPhases : phase_bit(StepPhase::kForces);
+  }
+  void run(StepPhase phase, StepContext<D>& ctx) override;
+  double max_time_step() const override { return max_dt_; }
+  std::size_t scratch_bytes() const override {
+    return refs_.bytes() + poses_.capacity() * sizeof(MotionPath::Pose) +
+           slots_.capacity() * sizeof(std::pair<ParticleId, std::size_t>);
+  }
+  void declare_output(ResultFile& result) override;
+  void sample(ResultFile& result, const StepContext<D>& ctx) override;
+  void initialize(std::size_t i, const SceneParticle& p) override;
+  std::string check(const StepContext<D>& /*ctx*/) const override { return failure_; }
+
+  // The constants of material k (zero moduli for materials of no elastic body).
+  const ElasticConstants& constants(std::size_t k) const { return laws_[k]; }
+
+ private:
+  static constexpr PhaseMask kConstrainedPhases =
+      sph::phases(StepPhase::kAfterDrift, StepPhase::kForces, StepPhase::kConstraints);
+  struct Body {
+    std::string name;
+    bool gravity = true;
+    std::size_t first_constraint = 0;  // into paths_
+    std::vector<Vec<D>> points;        // observation points
+    std::vector<ParticleId> observed;  // the particle nearest each point
+  };
+
+  void forces(StepContext<D>& ctx);
+  void hold_constrained(ParticleStore<D>& s);
+  void move_constrained(ParticleStore<D>& s, double t);
+  void find_observed(const ParticleStore<D>& s, const Comm& comm);
+  void fail(const ParticleStore<D>& s, std::size_t i, const StepContext<D>& ctx, const char* what);
+
+  std::vector<MaterialParams> mats_;
+  std::vector<ElasticConstants> laws_;  // per material
+  std::vector<double> inv_rho0_;        // per material
+  std::vector<Body> bodies_;
+  std::vector<MotionPath> paths_;  // per constraint, bodies in order
+  std::vector<MotionPath::Pose> poses_;
+  bool constrained_ = false;
+  K kernel_;
+  double h_ = 0, cfl_ = 1, sound_speed_ = 0;
+  Vec<D> gravity_ = Vec<D>::Zero();
+  double gravity_ramp_ = 0;
+  double max_dt_ = std::numeric_limits<double>::infinity();
+  bool observed_found_ = false;
+  std::vector<std::pair<ParticleId, std::size_t>> slots_;  // observed id -> series slot
+  std::string failure_;
+  std::vector<double> maxima_ = std::vector<double>(2);  // |a|max, |v|max (reduced in place)
+
+  ReferenceNeighbors<D> refs_;
+  Column<Vec<D>>& X_;                 // reference position (persistent, ghosted)
+  Column<std::uint16_t>& body_;       // elastic body (persistent, ghosted)
+  Column<std::int32_t>& constraint_;  // constraint of the body holding it, -1 free
+  Column<Vec<D>>& fluid_force_;       // the fluid's force on the particle [N] (scratch)
+  Column<Mat<D>>& pb_;                // P B (scratch, ghosted by halo.update)
+  Column<Mat<D>>& F_;                 // deformation gradient of the last step (scratch)
+  Column<double>* displacement_[D];   // x - X per axis (scratch, output)
+  Column<double>& von_mises_;         // (scratch, output)
+  Column<double>& strain_;            // (scratch, output)
+};
+
+template <int D>
+inline Vec<D> elastic_vec(const v1::Vec3& v) {
+  Vec<D> out;
+  out[0] = v.x();
+  out[1] = v.y();
+  if constexpr (D == 3) out[2] = v.z();
+  return out;
+}
+
+template <int D, class K>
+ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
+    : mats_(b.materials),
+      laws_(b.materials.size()),
+      inv_rho0_(b.materials.size(), 0.0),
+      kernel_(b.h),
+      h_(b.h),
+      cfl_(b.cfl_factor),
+      X_(b.particles.template add<Vec<D>>("elastic_reference_position", kName, true)),
+      body_(b.particles.template add<std::uint16_t>("elastic_body", kName, true)),
+      constraint_(b.particles.template add<std::int32_t>("elastic_constraint", kName, true)),
+      fluid_force_(b.particles.template add<Vec<D>>("elastic_fluid_force", kName, false)),
+      pb_(b.particles.template add<Mat<D>>("elastic_stress_correction", kName, false)),
+      F_(b.particles.template add<Mat<D>>("elastic_deformation_gradient", kName, false)),
+      von_mises_(b.particles.template add<double>("von_mises_stress", kName, false)),
+      strain_(b.particles.template add<double>("elastic_strain", kName, false)) {
+  // Only the owner moves a constrained particle; ghosts need the reference position and body
+  // (the reference neighbours of their neighbours) but not the constraint.
+  constraint_.set_ghost(false);
+  static const char* const kAxis[3] = {"elastic_displacement_x", "elastic_displacement_y",
+                                       "elastic_displacement_z"};
+  for (int a = 0; a < D; ++a)
+    displacement_[a] = &b.particles.template add<double>(kAxis[a], kName, false);
+  for (std::size_t k = 0; k < b.materials.size(); ++k)
+    if (b.materials[k].rho0 > 0) inv_rho0_[k] = 1.0 / b.materials[k].rho0;
+  const v1::Case& c = b.c;
+  if (c.has_gravity()) {
+    gravity_ = elastic_vec<D>(c.gravity().acceleration());
+    gravity_ramp_ = c.gravity().damping_time();
+  }
+  for (int k = 0; k < c.elastic_bodies_size(); ++k) {
+    const v1::ElasticBody& e = c.elastic_bodies(k);
+    Body body;
+    body.name = e.name().empty() ? "body" + std::to_string(k) : e.name();
+    body.gravity = !e.ignore_gravity();
+    body.first_constraint = paths_.size();
+    for (const auto& p : e.observation_points()) body.points.push_back(elastic_vec<D>(p));
+    for (const auto& con : e.constraints()) {
+      paths_.push_back(con.has_motion() ? MotionPath(con.motion(), D) : MotionPath());
+      constrained_ = true;
+    }
+    bodies_.push_back(std::move(body));
+    const int m = material_index(b.materials, e.material());
+    if (m < 0) continue;  // validation names the missing material
+    const MaterialParams& mp = b.materials[static_cast<std::size_t>(m)];
+    ElasticConstants& law = laws_[static_cast<std::size_t>(m)];
+    law = ElasticConstants::from(mp.youngs_modulus, mp.poisson_ratio, mp.rho0,
+                                 mp.elastic_law == v1::NEO_HOOKEAN
+                                     ? ElasticLawKind::kNeoHookean
+                                     : ElasticLawKind::kSaintVenantKirchhoff,
+                                 mp.elastic_damping);
+    sound_speed_ = std::max(sound_speed_, law.sound_speed);
+  }
+  // The bound at rest, h / c_s: the smallest the step can be without motion, and what the
+  // run starts from before the first forces.
+  if (sound_speed_ > 0) max_dt_ = cfl_ * kTimeStepFactor * h_ / sound_speed_;
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::initialize(std::size_t i, const SceneParticle& p) {
+  F_[i] = Mat<D>::Identity();
+  if (p.kind != Kind::kElastic) {
+    constraint_[i] = -1;
+    return;
+  }
+  for (int a = 0; a < D; ++a) X_[i][a] = p.x[a];
+  body_[i] = static_cast<std::uint16_t>(p.elastic);
+  constraint_[i] = p.constraint;
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::run(StepPhase phase, StepContext<D>& ctx) {
+  switch (phase) {
+    case StepPhase::kForces:
+      forces(ctx);
+      break;
+    case StepPhase::kConstraints:
+      hold_constrained(ctx.particles);
+      break;
+    case StepPhase::kAfterDrift:
+      move_constrained(ctx.particles, ctx.t);
+      break;
+    default:
+      break;
+  }
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::fail(const ParticleStore<D>& s, std::size_t i, const StepContext<D>& ctx,
+                              const char* what) {
+  if (!failure_.empty()) return;
+  failure_ = "elastic body " + bodies_[body_[i]].name + ": " + what +
+             describe_particle(s, mats_, i, ctx.step, ctx.t);
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
+  ParticleStore<D>& s = ctx.particles;
+  const std::size_t n = s.owned();
+  const Kind* kind = s.kind.data();
+  const std::uint16_t* mat = s.material.data();
+  const Vec<D>* X = X_.data();
+  const Vec<D>* x = s.x.data();
+  const Vec<D>* v = s.v.data();
+  failure_.clear();
+  refs_.build(s, ctx.neighbors, X, body_.data(), inv_rho0_.data(), kernel_);
+  // Pass 1: F, dF/dt, P and P B of every owned elastic particle (eqs. 3.7, 3.10, P-I 35).
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kind[i] != Kind::kElastic) {
+      pb_[i] = Mat<D>::Zero();
+      von_mises_[i] = strain_[i] = 0;
+      for (int a = 0; a < D; ++a) (*displacement_[a])[i] = 0;
+      continue;
+    }
+    const ElasticConstants& law = laws_[mat[i]];
+    const ReferenceSums<D> sums = reference_sums<D>(refs_, i, X, x, v);
+    for (int a = 0; a < D; ++a) (*displacement_[a])[i] = x[i][a] - X[i][a];
+    Mat<D> F = Mat<D>::Identity();
+    pb_[i] = Mat<D>::Zero();
+    von_mises_[i] = strain_[i] = 0;
+    const double conditioning = moment_conditioning<D>(sums.moment);
+    if (!(conditioning > kMinConditioning)) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "singular correction matrix (%zu reference neighbours left, conditioning "
+                    "%.3g): the body tore",
+                    refs_.size(i), conditioning);
+      fail(s, i, ctx, buf);
+    } else {
+      const Mat<D> B = sums.moment.inverse();
+      const Mat<D> Fi = sums.position * B;
+      const double J = Fi.determinant();
+      if (!(J > 0)) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "inverted particle (det F = %.3g <= 0)", J);
+        fail(s, i, ctx, buf);
+      } else {
+        F = Fi;
+        const Mat<D> S = second_piola<D>(law, F, sums.velocity * B);
+        pb_[i] = F * S * B;  // P B with P = F S (eq. 2.3)
+        von_mises_[i] = von_mises(cauchy_stress<D>(law, F, S));
+        strain_[i] = equivalent_strain<D>(F);
+      }
+    }
+    F_[i] = F;
+  }
+  ctx.halo.update(s, {&pb_});  // the momentum sum reads P B of the neighbours
+  // Pass 2: the momentum equation (eqs. 3.8-3.9), the fluid's force and gravity.
+  const Vec<D> g = BodyForce<D>::damping_factor(ctx.t, gravity_ramp_) * gravity_;
+  const Mat<D>* pb = pb_.data();
+  double a_max = 0, v_max = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kind[i] != Kind::kElastic) continue;
+    const double m = s.m[i];
+    const double V0 = m * inv_rho0_[mat[i]];
+    Vec<D> acc = (internal_force<D>(refs_, i, pb, V0) + fluid_force_[i]) / m;
+    if (bodies_[body_[i]].gravity) acc += g;
+    s.a[i] += acc;  // forces accumulate (solver/seam/unit.h)
+    v_max = std::max(v_max, v[i].norm());
+    if (constraint_[i] < 0) a_max = std::max(a_max, s.a[i].norm());
+  }
+  // Thesis eq. 33 with the maxima of all ranks (exact, so the same on any rank count).
+  maxima_[0] = a_max;
+  maxima_[1] = v_max;
+  ctx.comm.max_inplace(maxima_);
+  max_dt_ = h_ / (maxima_[1] + sound_speed_);
+  if (maxima_[0] > 0) max_dt_ = std::min(max_dt_, std::sqrt(h_ / maxima_[0]));
+  max_dt_ *= cfl_ * kTimeStepFactor;
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::hold_constrained(ParticleStore<D>& s) {
+  for (std::size_t i = 0; i < s.owned(); ++i)
+    if (s.kind[i] == Kind::kElastic && constraint_[i] >= 0) s.a[i] = Vec<D>::Zero();
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::move_constrained(ParticleStore<D>& s, double t) {
+  // One pose per constraint and step, as WallMotion does.
+  poses_.resize(paths_.size());
+  for (std::size_t k = 0; k < paths_.size(); ++k)
+    if (!paths_[k].is_static()) poses_[k] = paths_[k].pose(t);
+  for (std::size_t i = 0; i < s.owned(); ++i) {
+    if (s.kind[i] != Kind::kElastic || constraint_[i] < 0) continue;
+    const std::size_t k =
+        bodies_[body_[i]].first_constraint + static_cast<std::size_t>(constraint_[i]);
+    if (paths_[k].is_static()) {
+      s.x[i] = X_[i];
+      s.v[i] = Vec<D>::Zero();
+      continue;
+    }
+    Point3 X0 = Point3::Zero();
+    for (int a = 0; a < D; ++a) X0[a] = X_[i][a];
+    const Point3 xt = poses_[k].position(X0), vt = poses_[k].velocity(X0);
+    for (int a = 0; a < D; ++a) {
+      s.x[i][a] = xt[a];
+      s.v[i][a] = vt[a];
+    }
+  }
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::find_observed(const ParticleStore<D>& s, const Comm& comm) {
+  // The particle nearest each point in the reference configuration: the smallest distance of
+  // all ranks, then the smallest id at that distance (both reductions exact).
+  slots_.clear();
+  std::size_t slot = 0;
+  for (std::size_t k = 0; k < bodies_.size(); ++k) {
+    Body& body = bodies_[k];
+    body.observed.assign(body.points.size(), -1);
+    for (std::size_t p = 0; p < body.points.size(); ++p, ++slot) {
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < s.owned(); ++i)
+        if (s.kind[i] == Kind::kElastic && body_[i] == k)
+          best = std::min(best, (X_[i] - body.points[p]).squaredNorm());
+      best = comm.min(best);
+      std::int64_t id = std::numeric_limits<std::int64_t>::max();
+      for (std::size_t i = 0; i < s.owned(); ++i)
+        if (s.kind[i] == Kind::kElastic && body_[i] == k &&
+            (X_[i] - body.points[p]).squaredNorm() == best)
+          id = std::min<std::int64_t>(id, s.id[i]);
+      body.observed[p] = comm.min(id);
+      slots_.emplace_back(body.observed[p], slot);
+    }
+  }
+  std::sort(slots_.begin(), slots_.end());
+  observed_found_ = true;
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::declare_output(ResultFile& result) {
+  for (int a = 0; a < D; ++a) result.add_field(*displacement_[a]);
+  result.add_field(von_mises_);
+  result.add_field(strain_);
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::sample(ResultFile& result, const StepContext<D>& ctx) {
+  const ParticleStore<D>& s = ctx.particles;
+  if (!observed_found_) find_observed(s, ctx.comm);
+  // Displacements of the observed particles: each from its owner, zeros from the others.
+  std::vector<double> shown(slots_.size() * D, 0.0);
+  if (!slots_.empty())
+    for (std::size_t i = 0; i < s.owned(); ++i) {
+      if (s.kind[i] != Kind::kElastic) continue;
+      const auto range = std::equal_range(
+          slots_.begin(), slots_.end(), std::pair<ParticleId, std::size_t>(s.id[i], 0),
+          [](const auto& l, const auto& r) { return l.first < r.first; });
+      for (auto it = range.first; it != range.second; ++it)
+        for (int a = 0; a < D; ++a) shown[it->second * D + a] = s.x[i][a] - X_[i][a];
+    }
+  ctx.comm.sum_inplace(shown);
+  // Kinetic and strain energy per body (exact sums: rank-independent bits).
+  const std::size_t nb = bodies_.size();
+  const std::vector<double> energy = exact_sum(
+      2 * nb,
+      [&](auto&& emit) {
+        for (std::size_t i = 0; i < s.owned(); ++i) {
+          if (s.kind[i] != Kind::kElastic) continue;
+          const std::uint16_t k = body_[i];
+          const double m = s.m[i];
+          emit(2 * k, 0.5 * m * s.v[i].squaredNorm());
+          emit(2 * k + 1, m * inv_rho0_[s.material[i]] *
+                              strain_energy_density<D>(laws_[s.material[i]], F_[i]));
+        }
+      },
+      ctx.comm);
+  std::size_t slot = 0;
+  for (std::size_t k = 0; k < nb; ++k) {
+    const std::string base = "elastic/" + bodies_[k].name + "/";
+    const std::size_t np = bodies_[k].points.size();
+    if (np > 0)
+      result.put(base + "displacement",
+                 std::vector<double>(shown.begin() + static_cast<std::ptrdiff_t>(slot * D),
+                                     shown.begin() + static_cast<std::ptrdiff_t>((slot + np) * D)),
+                 {np, static_cast<std::uint64_t>(D)});
+    slot += np;
+    result.put(base + "kinetic_energy", energy[2 * k]);
+    result.put(base + "strain_energy", energy[2 * k + 1]);
+  }
+}
+
+}  // namespace sph
