@@ -6,10 +6,12 @@
 // Then the unit that runs them (solver/elastic/elastic_solid.h) on the same blocks: its
 // accelerations, time-step bound, gravity, constraints and guards.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <vector>
 
@@ -20,6 +22,8 @@
 #include "solver/elastic/elastic_law.h"
 #include "solver/elastic/elastic_solid.h"
 #include "solver/elastic/total_lagrangian.h"
+#include "solver/io/hdf5.h"
+#include "solver/io/result_file.h"
 #include "solver/parallel/halo.h"
 
 namespace sph {
@@ -465,6 +469,61 @@ TEST(ElasticSolidUnit, GravityAndConstraints2D) {
 
 TEST(ElasticSolidUnit, GravityAndConstraints3D) {
   gravity_and_constraints<3>({8, 5, 4});
+}
+
+// The series of a block deformed by A and moving at w: the displacement (A - I) X of the particle
+// nearest each observation point (one point on a particle, one halfway between two, which
+// goes to the smaller id), the kinetic energy M |w|^2 / 2 and the strain energy V Psi(A),
+// read back from the result file.
+TEST(ElasticSolidUnit, SeriesOfDisplacementAndEnergies) {
+  const Mat<2> A = deformation<2>();
+  const Vec<2> w(0.3, -0.1);
+  Block<2, WendlandC2<2>> b(
+      {12, 8}, [&](const Vec<2>& X) -> Vec<2> { return A * X; },
+      [&](const Vec<2>&) -> Vec<2> { return w; });
+  UnitCase uc(false, false);
+  auto* on = uc.c.mutable_elastic_bodies(0)->add_observation_points();
+  on->set_x(5.5 * kDx);
+  on->set_y(3.5 * kDx);
+  auto* between = uc.c.mutable_elastic_bodies(0)->add_observation_points();
+  between->set_x(3.0 * kDx);
+  between->set_y(0.5 * kDx);
+  UnitOnBlock<2> u(b, uc);
+  u.unit.run(StepPhase::kForces, u.ctx);
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("elastic_series_" + std::to_string(::getpid())))
+          .string();
+  {
+    ResultFile result(b.comm, dir);
+    result.declare([&] { u.unit.sample(result, u.ctx); });
+    result.create({});
+    u.unit.sample(result, u.ctx);
+    result.flush();
+  }
+  const h5::Handle f = h5::open_file(dir + "/result.h5", MPI_COMM_SELF, false);
+  const std::vector<double> shown = h5::read_vector(f, "/series/elastic/bar/displacement");
+  const std::vector<double> ke = h5::read_vector(f, "/series/elastic/bar/kinetic_energy");
+  const std::vector<double> se = h5::read_vector(f, "/series/elastic/bar/strain_energy");
+  ASSERT_EQ(shown.size(), 4u);
+  ASSERT_EQ(ke.size(), 1u);
+  ASSERT_EQ(se.size(), 1u);
+  const Vec<2> expect_on = (A - Mat<2>::Identity()) * Vec<2>(5.5 * kDx, 3.5 * kDx);
+  const Vec<2> expect_between = (A - Mat<2>::Identity()) * Vec<2>(2.5 * kDx, 0.5 * kDx);
+  const double err_shown = std::max((Vec<2>(shown[0], shown[1]) - expect_on).norm(),
+                                    (Vec<2>(shown[2], shown[3]) - expect_between).norm());
+  const double n = 12 * 8, V = kDx * kDx;
+  const ElasticConstants& law = u.unit.constants(0);
+  const double expect_ke = 0.5 * n * kRho0 * V * w.squaredNorm();
+  const double expect_se = n * V * strain_energy_density<2>(law, A);
+  std::printf(
+      "series: displacement error %.2e m; kinetic energy %.9g J (%.9g), strain energy "
+      "%.9g J (%.9g), relative errors %.2e, %.2e\n",
+      err_shown, ke[0], expect_ke, se[0], expect_se, std::abs(ke[0] / expect_ke - 1),
+      std::abs(se[0] / expect_se - 1));
+  EXPECT_LT(err_shown, 1e-15);
+  EXPECT_LT(std::abs(ke[0] / expect_ke - 1), 1e-14);
+  EXPECT_LT(std::abs(se[0] / expect_se - 1), 1e-12);
+  std::filesystem::remove_all(dir);
 }
 
 // The guards: a mirrored block (det F = -1) is inverted; a single row of particles has its
