@@ -32,7 +32,8 @@
 //   dt <= cfl_factor 0.6 min(sqrt(h / |a|max), h / (|v|max + c_s)),
 // with c_s = sqrt(K / rho0) the largest of the bodies' materials and the maxima over the free
 // elastic particles (speeds of the constrained ones too) of all ranks: a maximum is exact, so
-// the bound is the same on any rank count.
+// the bound is the same on any rank count; with Kelvin-Voigt damping also
+//   dt <= cfl_factor 0.125 h^2 rho0 / eta_d (an explicit viscous bound).
 //
 // Output: snapshot fields "elastic_displacement_x/_y/_z" (x - X), "von_mises_stress" (of the
 // Cauchy stress; plane strain in 2D) and "elastic_strain" (equivalent strain of the
@@ -123,6 +124,10 @@ class ElasticSolid final : public Unit<D> {
   Vec<D> gravity_ = Vec<D>::Zero();
   double gravity_ramp_ = 0;
   double max_dt_ = std::numeric_limits<double>::infinity();
+  // Kelvin-Voigt damping is a viscous stress with kinematic viscosity eta_d / rho0: the
+  // explicit viscous bound 0.125 h^2 / nu (Morris 1997; the fluid's in Fuchs 2021 eq. 41).
+  static constexpr double kDampingStepFactor = 0.125;
+  double damping_dt_ = std::numeric_limits<double>::infinity();
   bool observed_found_ = false;
   std::vector<std::pair<ParticleId, std::size_t>> slots_;  // observed id -> series slot
   std::string failure_;
@@ -201,10 +206,14 @@ ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
                                      : ElasticLawKind::kSaintVenantKirchhoff,
                                  mp.elastic_damping);
     sound_speed_ = std::max(sound_speed_, law.sound_speed);
+    if (mp.elastic_damping > 0)
+      damping_dt_ =
+          std::min(damping_dt_, kDampingStepFactor * h_ * h_ * mp.rho0 / mp.elastic_damping);
   }
   // The bound at rest, h / c_s: the smallest the step can be without motion, and what the
   // run starts from before the first forces.
   if (sound_speed_ > 0) max_dt_ = cfl_ * kTimeStepFactor * h_ / sound_speed_;
+  max_dt_ = std::min(max_dt_, cfl_ * damping_dt_);
 }
 
 template <int D, class K>
@@ -317,6 +326,7 @@ void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
   max_dt_ = h_ / (maxima_[1] + sound_speed_);
   if (maxima_[0] > 0) max_dt_ = std::min(max_dt_, std::sqrt(h_ / maxima_[0]));
   max_dt_ *= cfl_ * kTimeStepFactor;
+  max_dt_ = std::min(max_dt_, cfl_ * damping_dt_);
 }
 
 template <int D, class K>

@@ -5,6 +5,8 @@
 
 #include <mpi.h>
 
+#include "solver/core/kernel.h"
+#include "solver/elastic/elastic_solid.h"
 #include "solver/physics/scalar_transport.h"
 #include "solver/physics/surface_tension.h"
 #include "solver/physics/wall_motion.h"
@@ -58,6 +60,13 @@ std::vector<std::unique_ptr<Unit<D>>> make_units(const UnitBuildContext<D>& b) {
     units.push_back(std::make_unique<ScalarTransport<D>>(Scalar::kConcentration, b.c, b.materials,
                                                          b.particles, b.h, b.wall_volume,
                                                          b.cfl_factor, b.wall_index));
+  // Its sums evaluate the kernel at reference distances, so it is built for the case's kernel.
+  if (b.c.elastic_bodies_size() > 0) {
+    if (b.c.kernel() == v1::WENDLAND_C2)
+      units.push_back(std::make_unique<ElasticSolid<D, WendlandC2<D>>>(b));
+    else
+      units.push_back(std::make_unique<ElasticSolid<D, QuinticSpline<D>>>(b));
+  }
   if (b.c.has_surface_tension())
     units.push_back(std::make_unique<SurfaceTension<D>>(b.c, b.materials, b.particles, b.h,
                                                         b.wall_volume, b.cfl_factor, b.wall_index));

@@ -715,5 +715,41 @@ TEST(RankConsistency, SurfaceTensionResumesFromCheckpointOnAnyRankCount) {
   }
 }
 
+// Elastic bodies (solver/elastic/): the reference neighbours are found in the neighbour list
+// of the current positions, the ghosts carry the reference positions and P B, and the
+// energies and observed displacements are exact sums; the fluid-structure coupling adds the
+// fluid's force on each elastic particle. A plate oscillating at large amplitude, and a
+// plate under a water column, on 1/2/4 ranks and resumed on 1 and 4.
+TEST(RankConsistency, ElasticBodiesAcrossRanks) {
+  auto plate = test::load_case("oscillating_plate_2d");
+  plate.set_dx(0.004);  // 330 particles
+  plate.mutable_elastic_bodies(0)
+      ->mutable_initial_velocity_field()
+      ->mutable_beam_mode()
+      ->set_tip_velocity(2.8515);  // the benchmark's large amplitude
+  check_rank_counts("elastic_plate", plate, 300, false);
+  auto fsi = test::load_case("plate_under_water_2d");
+  fsi.set_dx(0.005);  // 800 fluid and 448 plate particles
+  check_rank_counts("elastic_fsi", fsi, 300, false);
+}
+
+TEST(RankConsistency, ElasticBodiesResumeFromCheckpointOnAnyRankCount) {
+  auto c = test::load_case("plate_under_water_2d");
+  c.set_dx(0.005);
+  c.mutable_output()->set_series_interval(1e-12);  // every step: rows after the checkpoint
+  check_resume("elastic_fsi", c, 300, 150);
+  if (world_rank() != 0) return;
+  const std::string dir = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_elastic_fsi_resume_";
+  test::ResultReader rr(dir + "reference/result.h5");
+  const auto d = rr.series("elastic/plate/displacement");
+  EXPECT_NE(d.back(), 0.0);
+  for (int ranks : {4, 1}) {
+    test::ResultReader rs(dir + "resumed_" + std::to_string(ranks) + "/result.h5");
+    EXPECT_EQ(rs.series("elastic/plate/displacement"), d) << ranks << " ranks";
+    EXPECT_EQ(rs.series("elastic/plate/strain_energy"), rr.series("elastic/plate/strain_energy"))
+        << ranks << " ranks";
+  }
+}
+
 }  // namespace
 }  // namespace sph
