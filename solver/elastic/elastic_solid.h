@@ -167,16 +167,24 @@ ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
       constraint_(b.particles.template add<std::int32_t>("elastic_constraint", kName, true)),
       fluid_force_(b.particles.template add<Vec<D>>("elastic_fluid_force", kName, false)),
       pb_(b.particles.template add<Mat<D>>("elastic_stress_correction", kName, false)),
-      F_(b.particles.template add<Mat<D>>("elastic_deformation_gradient", kName, false)),
-      von_mises_(b.particles.template add<double>("von_mises_stress", kName, false)),
-      strain_(b.particles.template add<double>("elastic_strain", kName, false)) {
+      F_(b.particles.template add<Mat<D>>("elastic_deformation_gradient", kName, true)),
+      von_mises_(b.particles.template add<double>("von_mises_stress", kName, true)),
+      strain_(b.particles.template add<double>("elastic_strain", kName, true)) {
   // Only the owner moves a constrained particle; ghosts need the reference position and body
   // (the reference neighbours of their neighbours) but not the constraint.
   constraint_.set_ghost(false);
+  // F and the output fields are recomputed in every kForces, but sampled and written after
+  // the step, when a rebalance may have moved the particle to another rank: they travel with
+  // it (persistent), though no ghost needs them.
+  F_.set_ghost(false);
+  von_mises_.set_ghost(false);
+  strain_.set_ghost(false);
   static const char* const kAxis[3] = {"elastic_displacement_x", "elastic_displacement_y",
                                        "elastic_displacement_z"};
-  for (int a = 0; a < D; ++a)
-    displacement_[a] = &b.particles.template add<double>(kAxis[a], kName, false);
+  for (int a = 0; a < D; ++a) {
+    displacement_[a] = &b.particles.template add<double>(kAxis[a], kName, true);
+    displacement_[a]->set_ghost(false);
+  }
   for (std::size_t k = 0; k < b.materials.size(); ++k)
     if (b.materials[k].rho0 > 0) inv_rho0_[k] = 1.0 / b.materials[k].rho0;
   const v1::Case& c = b.c;
