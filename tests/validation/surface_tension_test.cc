@@ -4,7 +4,10 @@
 //    sigma / R, and, started from the Laplace state, the spurious currents;
 //  - a square droplet relaxing to a circle, its mass exact;
 //  - a drop oscillating in mode 2: its period against Lamb's and its decay rate, from a
-//    damped cosine fitted to the drop's second moments.
+//    damped cosine fitted to the drop's second moments;
+//  - the Laplace jump of a drop in a gas 1000 times lighter;
+//  - a half drop on a wall with a static contact angle of 60 and 120 degrees (Breinlinger et
+//    al. 2013): the equilibrium angle from a circle fitted to the cap.
 //
 // Units: R = 1, rho = 1, sigma = 1 (capillary time sqrt(rho R^3 / sigma) = 1). The sound speed
 // c = 10 keeps the density within 1% of rho0 under the capillary pressure sigma / R = 1
@@ -48,15 +51,23 @@ std::string num(double v) {
 // `background_pressure`, the drop `laplace_jump` more: with laplace_jump = sigma / R the drop
 // starts in the Laplace state (p_in - p_out = sigma / R at rho = rho0 on both sides) instead
 // of building the jump by compressing itself, which sends a pressure wave through the box.
+// The outer fluid's properties where they differ from the drop's (density 1, sound speed 10,
+// dynamic viscosity mu).
+struct OuterFluid {
+  double density = 1, sound_speed = 10;
+  double mu = -1;  // < 0: the drop's
+};
+
 v1::Case two_fluid_box(double dx, double half, const std::string& drop_shape, double mu,
                        double end_time, double interval, const std::string& drop_extra = "",
-                       double background_pressure = 5, double laplace_jump = 0) {
+                       double background_pressure = 5, double laplace_jump = 0,
+                       const OuterFluid& outer = {}) {
   const std::string box = "box { lo { x: " + num(-half) + " y: " + num(-half) +
                           " } hi { x: " + num(half) + " y: " + num(half) + " } }";
-  auto material = [&](const char* name, double pb) {
-    return std::string("materials { name: \"") + name +
-           "\" density: 1 eos { kind: LINEAR sound_speed: 10 background_pressure: " + num(pb) +
-           " } dynamic_viscosity: " + num(mu) + " }\n";
+  auto material = [&](const char* name, double rho, double c, double pb, double eta) {
+    return std::string("materials { name: \"") + name + "\" density: " + num(rho) +
+           " eos { kind: LINEAR sound_speed: " + num(c) + " background_pressure: " + num(pb) +
+           " } dynamic_viscosity: " + num(eta) + " }\n";
   };
   return parse_case_text(
       "name: \"surface_tension_drop\"\n"
@@ -65,8 +76,9 @@ v1::Case two_fluid_box(double dx, double half, const std::string& drop_shape, do
       num(dx) + "\ndomain { " + box.substr(6, box.size() - 8) +
       " }\n"
       "periodic_x: true\nperiodic_y: true\n" +
-      material("drop", background_pressure + laplace_jump) +
-      material("outer", background_pressure) +
+      material("drop", 1, 10, background_pressure + laplace_jump, mu) +
+      material("outer", outer.density, outer.sound_speed, background_pressure,
+               outer.mu < 0 ? mu : outer.mu) +
       "fluids { name: \"drop\" material: \"drop\" shape { " + drop_shape + " } " + drop_extra +
       " }\n"
       "fluids { name: \"outer\" material: \"outer\" shape { difference { base { " +
@@ -136,12 +148,14 @@ double largest_speed(const test::ResultReader& rr, double from) {
   return largest;
 }
 
-void static_drop(double dx, const char* name) {
+// max_spurious: the bound on the largest fluid speed for t >= 2 in units of sigma / mu.
+void static_drop(double dx, const char* name, const OuterFluid& outer = {},
+                 double max_spurious = 1e-2) {
   // R = 20 dx. mu = 0.2 (Ohnesorge number mu / sqrt(rho sigma R) = 0.2) damps the start-up's
   // capillary and acoustic oscillations within t = 3; the box is 3 R wide. Both fluids start
   // at rho0: the jump is built by the surface tension alone.
   const double R = 1, mu = 0.2, end = 3;
-  auto c = two_fluid_box(dx, 1.5 * R, "ball { radius: 1 }", mu, end, 0.05);
+  auto c = two_fluid_box(dx, 1.5 * R, "ball { radius: 1 }", mu, end, 0.05, "", 5, 0, outer);
   const std::string out = test::output_dir(name);
   const RunOutcome r = test::run(c, out);
   ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
@@ -164,19 +178,35 @@ void static_drop(double dx, const char* name) {
   const double spurious = largest_speed(rr, 2.0);
   const double scale = 1.0 / mu;  // sigma / mu
   std::printf(
-      "Static drop, R/dx = %.0f (R = %.4f from the particle area), density ratio 1, %lld steps: "
+      "Static drop, R/dx = %.0f (R = %.4f from the particle area), density ratio %g, %lld steps: "
       "p_in - p_out = %.5f vs sigma/R = %.5f, error %.2f%%; largest speed for t >= 2: %.3g = "
       "%.3g sigma/mu\n",
-      R / dx, Rn, static_cast<long long>(r.steps), jump, exact, 100 * error, spurious,
-      spurious / scale);
+      R / dx, Rn, 1 / outer.density, static_cast<long long>(r.steps), jump, exact, 100 * error,
+      spurious, spurious / scale);
   EXPECT_LT(error, 0.05);
-  // Started from rest at rho0, the start-up leaves 5.3e-3 sigma/mu at t = 3
+  // Started from rest at rho0, the start-up leaves 5.3e-3 sigma/mu at t = 3 at density ratio 1
   // (SurfaceTension.StaticDropSpuriousCurrents starts from the Laplace state instead).
-  EXPECT_LT(spurious / scale, 1e-2);
+  EXPECT_LT(spurious / scale, max_spurious);
 }
 
 TEST(SurfaceTension, StaticDropLaplacePressureDensityRatio1) {
   static_drop(0.05, "surface_tension_static_drop");
+}
+
+TEST(SurfaceTension, StaticDropLaplacePressureDensityRatio1000) {
+  // The drop (rho 1, c 10) in a gas of density 1e-3. The gas only has to hold its own small
+  // pressure changes (the jump sits in the drop), so it needs no reference pressure equal to
+  // the drop's (sound speed 316): c = 50 gives rho c^2 = 2.5, 2.5 times the Laplace jump, at a
+  // step 5 times shorter than at ratio 1 (12 000 steps, about 20 s). The gas has the drop's
+  // kinematic viscosity (dynamic 2e-4; the drop's 0.2 in the gas would bound the step by
+  // 0.125 h^2 / nu = 1.6e-6). The largest speed, in the gas, is 0.24 = 0.048 sigma/mu at
+  // t >= 2 (light particles near the interface); it is bounded at 0.1 sigma/mu here, the
+  // issue's 1e-3 being a density-ratio-1 figure (SurfaceTension.StaticDropSpuriousCurrents).
+  OuterFluid gas;
+  gas.density = 1e-3;
+  gas.sound_speed = 50;
+  gas.mu = 0.2e-3;
+  static_drop(0.05, "surface_tension_static_drop_r1000", gas, 0.1);
 }
 
 TEST(SurfaceTension, StaticDropSpuriousCurrents) {
@@ -260,6 +290,144 @@ TEST(SurfaceTension, SquareDropletRelaxesToACircle) {
       2 * a, r_eq, r_eq / dx, f.time, radii.size(), *lo, *hi, (*hi - *lo) / dx, mean);
   EXPECT_LT(*hi - *lo, dx);
   EXPECT_LT(std::abs(mean - r_eq), dx);
+}
+
+// A half drop of radius 1 on a flat no-slip wall (the floor, y < 0) in a second fluid,
+// periodic in x, closed by a lid at y = 3, with the static contact angle theta_deg at the floor
+// (measured through the drop; Breinlinger et al. 2013). The cap starts at 90 degrees.
+v1::Case drop_on_wall(double dx, double theta_deg, double mu, double end_time) {
+  const double half = 3, top = 3, wall = 4 * dx;
+  const std::string drop =
+      "intersection { shapes { ball { radius: 1 } } shapes { box { lo { x: -2 y: 0 } hi { x: 2 "
+      "y: 2 } } } }";
+  const std::string fluid_box =
+      "box { lo { x: " + num(-half) + " y: 0 } hi { x: " + num(half) + " y: " + num(top) + " } }";
+  auto material = [&](const char* name) {
+    return std::string("materials { name: \"") + name +
+           "\" density: 1 eos { kind: LINEAR sound_speed: 10 background_pressure: 5 } "
+           "dynamic_viscosity: " +
+           num(mu) + " }\n";
+  };
+  return parse_case_text(
+      "name: \"surface_tension_contact_angle\"\n"
+      "dimension: 2\n"
+      "dx: " +
+      num(dx) + "\ndomain { lo { x: " + num(-half) + " y: " + num(-wall) +
+      " } hi { x: " + num(half) + " y: " + num(top + wall) +
+      " } }\n"
+      "periodic_x: true\n" +
+      material("drop") + material("outer") + "fluids { name: \"drop\" material: \"drop\" shape { " +
+      drop +
+      " } }\n"
+      "fluids { name: \"outer\" material: \"outer\" shape { difference { base { " +
+      fluid_box + " } subtract { " + drop +
+      " } } } }\n"
+      "walls { name: \"floor\" shape { box { lo { x: " +
+      num(-half) + " y: " + num(-wall) + " } hi { x: " + num(half) +
+      " y: 0 } } } }\n"
+      "walls { name: \"lid\" shape { box { lo { x: " +
+      num(-half) + " y: " + num(top) + " } hi { x: " + num(half) + " y: " + num(top + wall) +
+      " } } } }\n"
+      "surface_tension { pairs { material_a: \"drop\" material_b: \"outer\" sigma: 1 } walls { "
+      "wall: \"floor\" contact_angle: " +
+      num(theta_deg) +
+      " material: \"drop\" } }\n"
+      "fluid_model { density: SUMMATION }\n"
+      "time { end_time: " +
+      num(end_time) +
+      " }\n"
+      "output { interval: 0.5 series_interval: 0.05 }\n");
+}
+
+struct CapAngles {
+  double circle_fit = 0;   // from a circle fitted to the cap's boundary particles [degrees]
+  double height_base = 0;  // from the cap's height and base width, tan(theta/2) = h/b
+  double radius = 0, centre_y = 0, height = 0, half_base = 0;
+};
+
+// The equilibrium angle of the drop (material 0) on the floor (y = 0).
+CapAngles cap_angles(const DropFields& f, double dx) {
+  // Boundary particles: drop particles with a particle of the other fluid within 1.5 dx, more
+  // than 3 dx above the floor (the kernel support there overlaps the wall).
+  std::vector<std::pair<double, double>> edge;
+  double top = 0, left = 1e300, right = -1e300;
+  for (std::size_t i = 0; i < f.x.size(); ++i) {
+    if (f.material[i] != 0) continue;
+    top = std::max(top, f.y[i]);
+    if (f.y[i] < dx) {
+      left = std::min(left, f.x[i]);
+      right = std::max(right, f.x[i]);
+    }
+    if (f.y[i] < 3 * dx) continue;
+    bool on_edge = false;
+    for (std::size_t j = 0; j < f.x.size() && !on_edge; ++j)
+      on_edge = f.material[j] == 1 && std::hypot(f.x[i] - f.x[j], f.y[i] - f.y[j]) < 1.5 * dx;
+    if (on_edge) edge.push_back({f.x[i], f.y[i]});
+  }
+  // Algebraic circle fit (Kasa): x^2 + y^2 + D x + E y + F = 0 in least squares.
+  double A[3][3] = {}, b[3] = {};
+  for (const auto& [x, y] : edge) {
+    const double row[3] = {x, y, 1.0}, rhs = -(x * x + y * y);
+    for (int i = 0; i < 3; ++i) {
+      b[i] += row[i] * rhs;
+      for (int j = 0; j < 3; ++j) A[i][j] += row[i] * row[j];
+    }
+  }
+  auto det3 = [](const double m[3][3]) {
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  };
+  double sol[3];
+  const double d = det3(A);
+  for (int c = 0; c < 3; ++c) {
+    double M[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) M[i][j] = j == c ? b[i] : A[i][j];
+    sol[c] = det3(M) / d;
+  }
+  CapAngles a;
+  const double cx = -sol[0] / 2, cy = -sol[1] / 2;
+  // The boundary particles sit about half a spacing inside the interface.
+  a.radius = std::sqrt(cx * cx + cy * cy - sol[2]) + 0.5 * dx;
+  a.centre_y = cy;
+  a.circle_fit = std::acos(std::clamp(-cy / a.radius, -1.0, 1.0)) * 180 / kPi;
+  // Cap height and base half-width, each particle taken to fill dx around it.
+  a.height = top + 0.5 * dx;
+  a.half_base = 0.5 * (right - left) + 0.5 * dx;
+  a.height_base = 2 * std::atan(a.height / a.half_base) * 180 / kPi;
+  return a;
+}
+
+void contact_angle(double theta_deg, const char* name) {
+  // R/dx = 15; mu = 0.2 (Ohnesorge number 0.2) damps the spreading within t = 8.
+  const double dx = 1.0 / 15, mu = 0.2, end = 8;
+  const v1::Case c = drop_on_wall(dx, theta_deg, mu, end);
+  const std::string out = test::output_dir(name);
+  const RunOutcome r = test::run(c, out);
+  ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+  test::ResultReader rr(out + "/result.h5");
+  const DropFields f = read_snapshot(rr, rr.snapshot_count() - 1);
+  const CapAngles a = cap_angles(f, dx);
+  // The circular cap of the drop's area pi/2 with the prescribed angle.
+  const double th = theta_deg * kPi / 180;
+  const double area =
+      static_cast<double>(std::count(f.material.begin(), f.material.end(), 0)) * dx * dx;
+  const double R_cap = std::sqrt(area / (th - std::sin(th) * std::cos(th)));
+  std::printf(
+      "Drop on a wall, contact angle %.0f deg, R/dx = 15, %lld steps, t = %.1f: angle from the "
+      "fitted circle %.1f deg (error %+.1f deg), from height and base %.1f deg (error %+.1f "
+      "deg); cap radius %.3f (circular cap of the drop's area at the prescribed angle: %.3f)\n",
+      theta_deg, static_cast<long long>(r.steps), f.time, a.circle_fit, a.circle_fit - theta_deg,
+      a.height_base, a.height_base - theta_deg, a.radius, R_cap);
+  EXPECT_LT(std::abs(a.circle_fit - theta_deg), 10.0);
+}
+
+TEST(SurfaceTension, ContactAngle60) {
+  contact_angle(60, "surface_tension_contact_angle_60");
+}
+TEST(SurfaceTension, ContactAngle120) {
+  contact_angle(120, "surface_tension_contact_angle_120");
 }
 
 // Least-squares fit of y(t) = e^{-gamma t} (p cos(omega t) + q sin(omega t)) + offset. For a
@@ -411,10 +579,11 @@ TEST(SurfaceTension, OscillatingDropMode2Period) {
   // of omega (a Stokes layer): viscous period about 3.83 (+5.6%) against Lamb's 3.63.
   // Measured (docs/surface_tension.md): +8.8% at R/dx = 10 and 20, the same within +-2% for
   // mu = 0.002, amplitudes A = 0.1 to 0.4, boxes 6 R to 14 R and a shorter step; other sound
-  // speeds give +4.9% to +14% (runs scatter by about +-3%). A10's scalar divergence instead of
-  // the tensor one gives +0.7% (but the static jump 5.3% high): the tensor curvature
-  // under-reads the mode-2 perturbation. The issue's 5% is not reached; 12% guards the present
-  // value.
+  // speeds give +4.9% to +14% (runs scatter by about +-3%). With the exact curvature of the
+  // mode-2 shape put in place of the computed one the period is +7.6% to +9.3% as well, so the
+  // offset is not the curvature scheme's (A10's scalar divergence gives +0.7% by reading the
+  // mode-2 curvature about 20% high); the viscous estimate alone is +5.6% at mu = 0.01. The
+  // issue's 5% is not reached; 12% guards the present value.
   const OscillationResult o =
       oscillating_drop(0.1, 3.0, 0.01, 0.2, 11.0, 0.3, "surface_tension_oscillating_drop");
   EXPECT_LT(std::abs(o.period / o.lamb_period - 1), 0.12);
