@@ -22,6 +22,7 @@ namespace {
 struct Effects {
   bool heat = false, body = false, contact = false, concentration = false, phase = false;
   bool drop = false, tension = false;  // a drop of a second fluid; surface tension on its rim
+  bool plate = false;                  // an elastic plate standing on the floor, clamped there
 };
 
 std::string scene(double dx, const Effects& e) {
@@ -68,6 +69,14 @@ surface_tension { pairs { material_a: "fluid" material_b: "drop" sigma: 0.04 } }
         R"(bodies { name: "disk" material: "solid" shape { ball { center { x: 0.025 y: 0.006 } radius: 0.005 } } )" +
         std::string(e.phase ? "initial_temperature: 300.55 " : "") + "}\n";
   if (e.contact) t += "contact { stiffness: 1e5 damping: 1 }\n";
+  // A rubber-like plate 2 mm thick and 20 mm tall standing in the water, its lowest 2 mm held:
+  // E = 8 kPa gives c_s = 2.2 m/s, so its own step bound (thesis eq. 33) is about the fluid's.
+  if (e.plate)
+    t +=
+        R"(materials { name: "rubber" phase: SOLID density: 1100 youngs_modulus: 8000 poisson_ratio: 0.3 }
+elastic_bodies { name: "plate" material: "rubber" shape { box { lo { x: 0.024 y: 0 } hi { x: 0.026 y: 0.02 } } }
+  constraints { region { box { lo { x: 0.02 y: 0 } hi { x: 0.03 y: 0.002 } } } } }
+)";
   // With phase change the fluid starts at 302 and the disk at 300.55, just below its melting
   // point of 300.6: the contact temperature of water and this solid (effusivities 1.5e3 and
   // 4.5e3) is 300.92, so the disk melts from its rim inwards through the run (measured: from
@@ -164,6 +173,7 @@ int main(int argc, char** argv) {
       {"+ heat + phase change", {.heat = true, .body = true, .contact = true, .phase = true}},
       {"+ a drop of a second fluid", {.drop = true}},
       {"+ drop + surface tension", {.drop = true, .tension = true}},
+      {"+ elastic plate", {.plate = true}},
   };
   for (const auto& v : variants) {
     sph::v1::Case c = sph::parse_case_text(scene(dx, v.effects));
