@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "case/load.h"
 #include "tests/support/result_reader.h"
@@ -133,6 +135,54 @@ TEST(GuardsTrip, AbsurdContactStiffness) {
     output { interval: 0.01 })",
                              "guards.max_contact_substeps");
   EXPECT_LT(t.outcome.wall_seconds, 30);
+}
+
+TEST(GuardsTrip, InvertedElasticParticle) {
+  // A soft block (Saint Venant-Kirchhoff, nu = 0: lambda = 0, so its top and bottom faces stay
+  // free of stress) hit hard along x: released with v_x = -G (x - x_c), its faces move inwards
+  // at G W/2 = 3 times its wave speed c = sqrt(E / rho). The deformation is uniform, so inside
+  // the block no force acts (the corrected operators are exact for it) until the release waves
+  // from the free faces arrive at c: the middle is squeezed at F_xx = 1 - G t towards
+  // F_xx = 0 at t = 1/G. Saint Venant-Kirchhoff does not stop it (its energy stays finite at
+  // F = 0, and below F_xx = 1/sqrt(3) its stress falls as the squeeze grows, so the squeezed
+  // material is unstable), and a particle of the middle inverts at about 1/G. The run must
+  // stop there, naming the particle and a place inside the squeezed block.
+  // G = 3 c / (W/2), c = sqrt(E / rho) = 31.62 m/s, W/2 = 0.05 m (the case text spells it).
+  const double G = 1897.3665961010275, xc = 0.00125, yc = 0.00125, dx = 0.0025;
+  const auto t = expect_trip("inverted_elastic", R"(dimension: 2 dx: 0.0025
+    domain { lo { x: -0.1 y: -0.1 } hi { x: 0.1 y: 0.1 } }
+    materials { name: "soft" phase: SOLID density: 1000 youngs_modulus: 1e6 poisson_ratio: 0 }
+    elastic_bodies { name: "block" material: "soft"
+      shape { box { lo { x: -0.05 y: -0.025 } hi { x: 0.0525 y: 0.0275 } } }
+      constraints { region { ball { center { x: 0.00125 y: 0.00125 } radius: 0.001 } } }
+      initial_velocity_field { linear { center { x: 0.00125 y: 0.00125 }
+                                        gradient_x { x: -1897.3665961010275 } } } }
+    time { end_time: 0.01 }
+    output { interval: 0.0001 })",
+                             "inverted particle (det F = ");
+  const std::string& m = t.outcome.message;
+  EXPECT_NE(m.find("elastic body block"), std::string::npos) << m;
+  EXPECT_NE(m.find("particle id "), std::string::npos) << m;
+  // The place and time: "... at (x, y), step N, t = T" after the particle's description.
+  const std::size_t at = m.rfind(" at (");
+  ASSERT_NE(at, std::string::npos) << m;
+  double x = 0, y = 0, time = 0;
+  long long step = 0;
+  ASSERT_EQ(std::sscanf(m.c_str() + at, " at (%lf, %lf), step %lld, t = %lf", &x, &y, &step, &time),
+            4)
+      << m;
+  std::printf(
+      "inverted elastic: stopped at step %lld, t = %.6g = %.4f / G, the particle named "
+      "at (%.6g, %.6g), %.3g m from the block's centre along x\n",
+      step, time, G * time, x, y, x - xc);
+  // Not before the middle is squeezed to half its width (F_xx = 0.5 is still stable ground),
+  // not later than a tenth of 1/G past the collapse.
+  EXPECT_GE(time, 0.5 / G);
+  EXPECT_LE(time, 1.1 / G);
+  EXPECT_LE(time, t.outcome.time + 1e-15);
+  // Inside the block: its particles move along x only, the faces inwards.
+  EXPECT_LE(std::abs(x - xc), 20 * dx);
+  EXPECT_LE(std::abs(y - yc), 10 * dx + 1e-9);
 }
 
 TEST(GuardsTrip, WorkerExitsWithStatus3AndKeepsTheLastGoodState) {

@@ -68,14 +68,24 @@ def plot_case(case, png):
     for key in ("kinetic_energy", "potential_energy", "elastic_energy"):
         if key in d:
             energy = d[key][:] if energy is None else energy + d[key][:]
+    # Elastic bodies (kinetic + strain energy of each, solver/elastic/elastic_solid.h).
+    solids = None
+    if "elastic" in f["series"]:
+        for body in f["series/elastic"].values():
+            e = body["kinetic_energy"][:] + body["strain_energy"][:]
+            solids = e if solids is None else solids + e
+    if solids is not None:
+        energy = solids if energy is None else energy + solids
     if energy is not None:
         ax[1].plot(t, energy)
-        ax[1].set_title("fluid kinetic + potential + elastic energy")
+        ax[1].set_title("fluid kinetic + potential + elastic energy" +
+                        (" + elastic bodies" if solids is not None else ""))
     if "mass" in d:
         m = d["mass"][:]
         if "bodies" in f["series"] and "mass" in f["series/bodies"]:
             m = m + np.nansum(f["series/bodies/mass"][:], axis=1)
-        ax[2].plot(t, m / m[0] - 1)
+        if m[0] != 0:  # elastic bodies alone keep their mass by construction
+            ax[2].plot(t, m / m[0] - 1)
         ax[2].set_title("mass drift (fluid + bodies)")
     if phases:
         # solver/diagnostics/phase_mixing.h

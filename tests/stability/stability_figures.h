@@ -1,9 +1,9 @@
 #pragma once
 // The figures the stability suite records over a run, read back from its result file:
 // density deviation, speed, fluid mass, momentum, mechanical energy (fluid kinetic, potential
-// and elastic, bodies' kinetic and potential), how far fluid entered a solid, the closest
-// contact, and the phase-change counters. Printed as a table so a CI log shows how each hard
-// case evolved, not only that it passed.
+// and elastic, bodies' kinetic and potential, elastic bodies' kinetic and strain), how far
+// fluid entered a solid, the closest contact, and the phase-change counters. Printed as a table so
+// a CI log shows how each hard case evolved, not only that it passed.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "case/load.h"
 #include "tests/support/result_reader.h"
 
 namespace sph::test {
@@ -19,14 +20,17 @@ struct StabilityFigures {
   std::vector<double> t, density_deviation, max_speed, fluid_mass, momentum, fluid_energy;
   std::vector<double> solid_fraction, contact_distance;  // empty without walls / contact
   std::vector<double> body_energy, body_mass;            // empty without bodies
-  std::vector<double> melted, solidified, bodies;        // empty without phase change
+  // Kinetic + strain energy of all elastic bodies (elastic/<body>/*); empty without them.
+  std::vector<double> elastic_energy;
+  std::vector<double> melted, solidified, bodies;  // empty without phase change
   // Interface and stray particles (solver/diagnostics/phase_mixing.h); empty with one phase.
   std::vector<double> interface, stray;
   bool all_finite = true;  // every diagnostic sample finite
 
   // Fluid + bodies mechanical energy at sample k.
   double energy(std::size_t k) const {
-    return fluid_energy[k] + (body_energy.empty() ? 0.0 : body_energy[k]);
+    return fluid_energy[k] + (body_energy.empty() ? 0.0 : body_energy[k]) +
+           (elastic_energy.empty() ? 0.0 : elastic_energy[k]);
   }
   double total_mass(std::size_t k) const {
     return fluid_mass[k] + (body_mass.empty() ? 0.0 : body_mass[k]);
@@ -47,9 +51,11 @@ struct StabilityFigures {
     while (k + 1 < t.size() && t[k] < t0) ++k;
     return k;
   }
-  // Largest relative deviation of the total mass from its first sample.
+  // Largest relative deviation of the total mass from its first sample (elastic particles keep
+  // their mass by construction and are not counted; 0 without fluid or bodies).
   double mass_drift() const {
     double worst = 0;
+    if (t.empty() || total_mass(0) == 0) return 0;
     for (std::size_t k = 0; k < t.size(); ++k)
       worst = std::max(worst, std::abs(total_mass(k) / total_mass(0) - 1));
     return worst;
@@ -112,6 +118,18 @@ inline StabilityFigures read_stability_figures(const std::string& result_path,
       f.body_energy.push_back(e);
     }
   }
+  // Elastic bodies, named in the case the result file records.
+  const v1::Case c = parse_case_text(rr.meta("case_text"));
+  for (const auto& b : c.elastic_bodies()) {
+    const std::string base = "elastic/" + b.name() + "/";
+    const auto ek = rr.series(base + "kinetic_energy");
+    const auto es = rr.series(base + "strain_energy");
+    f.elastic_energy.resize(n, 0.0);
+    for (std::size_t k = 0; k < std::min(n, ek.size()); ++k) {
+      f.elastic_energy[k] += ek[k] + es[k];
+      f.all_finite = f.all_finite && std::isfinite(ek[k]) && std::isfinite(es[k]);
+    }
+  }
   if (rr.has_series("phase/melted")) {
     f.melted = rr.series("phase/melted");
     f.solidified = rr.series("phase/solidified");
@@ -131,8 +149,8 @@ inline void print_stability_table(const std::string& name, const StabilityFigure
                     step = std::max<std::size_t>(1, n / static_cast<std::size_t>(rows));
   for (std::size_t k = 0; k < n; k += step) {
     std::printf("  %9.4g %9.3g %9.3g %12.2e %13.6g %9.3g %9.3g", f.t[k], f.density_deviation[k],
-                f.max_speed[k], f.total_mass(k) / f.total_mass(0) - 1, f.energy(k), f.momentum[k],
-                f.solid_fraction.empty() ? 0.0 : f.solid_fraction[k]);
+                f.max_speed[k], f.total_mass(0) == 0 ? 0.0 : f.total_mass(k) / f.total_mass(0) - 1,
+                f.energy(k), f.momentum[k], f.solid_fraction.empty() ? 0.0 : f.solid_fraction[k]);
     if (!f.stray.empty()) std::printf(" %10.0f %6.0f", f.interface[k], f.stray[k]);
     if (!f.melted.empty())
       std::printf(" %8.0f %7.0f %7.0f", f.melted[k], f.solidified[k], f.bodies[k]);
