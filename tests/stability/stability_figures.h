@@ -120,8 +120,10 @@ inline StabilityFigures read_stability_figures(const std::string& result_path,
   }
   // Elastic bodies, named in the case the result file records.
   const v1::Case c = parse_case_text(rr.meta("case_text"));
-  for (const auto& b : c.elastic_bodies()) {
-    const std::string base = "elastic/" + b.name() + "/";
+  for (int j = 0; j < c.elastic_bodies_size(); ++j) {
+    // An unnamed body's series go by "body<index>" (solver/elastic/elastic_solid.h).
+    const std::string& name = c.elastic_bodies(j).name();
+    const std::string base = "elastic/" + (name.empty() ? "body" + std::to_string(j) : name) + "/";
     const auto ek = rr.series(base + "kinetic_energy");
     const auto es = rr.series(base + "strain_energy");
     f.elastic_energy.resize(n, 0.0);
