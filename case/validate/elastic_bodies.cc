@@ -119,13 +119,10 @@ void Validator::elastic_body(const v1::ElasticBody& b, const std::string& f) {
   if (b.ignore_gravity() && !c_.has_gravity())
     error(cat(f, "ignore_gravity"), "set, but the case has no gravity");
 
-  if (b.has_initial_temperature()) {
-    if (!c_.has_thermal())
-      error(cat(f, "initial_temperature"),
-            "set, but heat conduction is not enabled (add a `thermal { }` block)");
-    else
-      positive(b.initial_temperature(), cat(f, "initial_temperature"), "must be > 0 [K]");
-  }
+  // Any finite temperature, as for fluids and rigid bodies (the scale is the user's).
+  if (b.has_initial_temperature() && !c_.has_thermal())
+    error(cat(f, "initial_temperature"),
+          "set, but heat conduction is not enabled (add a `thermal { }` block)");
   transport_properties(b.material(), f + ".material");
 
   // Observation points: inside the domain, where the body's particles can be.

@@ -192,9 +192,10 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
           static_cast<std::size_t>(std::clamp(c[a] - 2 * box.lo[a], margin, dims_[a] - 1 - margin));
     cell_of_[i] = static_cast<std::uint32_t>(lin);
     ++cell_start_[lin + 1];
-    cell_kinds_[lin] |= static_cast<std::uint8_t>(kind[i] == Kind::kFluid   ? 1
-                                                  : kind[i] == Kind::kRigid ? 2
-                                                                            : 0);
+    cell_kinds_[lin] |=
+        static_cast<std::uint8_t>(kind[i] == Kind::kFluid                                ? 1
+                                  : kind[i] == Kind::kRigid || kind[i] == Kind::kElastic ? 2
+                                                                                         : 0);
   }
   for (std::size_t c = 0; c < ncell; ++c) cell_start_[c + 1] += cell_start_[c];
   cell_items_.resize(n);
@@ -254,8 +255,8 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
     // Elastic particles list every neighbour: their fluid ones for the wall condition and
     // the coupling, the others for the total Lagrangian sums over their own body.
     const bool all = fluid || (rigid && rigid_all) || kind[i] == Kind::kElastic;
-    // With conduction, a wall's Dirichlet mirror value averages the rigid particles around it
-    // too (see ScalarDiffusion::extrapolate_walls), so walls list them after their fluid.
+    // With conduction, a wall's Dirichlet mirror value averages the rigid and elastic particles
+    // around it too (see ScalarDiffusion::extrapolate_walls), so walls list them after their fluid.
     const bool wall_rigid = rigid_all && kind[i] == Kind::kWall;
     if (!fluid && !contacts && !all) {
       // A wall that lists rigid particles must not be skipped beside a body with no fluid
@@ -337,7 +338,9 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
         out[m] = j;
         m += static_cast<std::size_t>(near & to_out);
         other[o] = j;
-        o += static_cast<std::size_t>(near & !to_out & (all | (wall_rigid & (kj == Kind::kRigid))));
+        o += static_cast<std::size_t>(
+            near & !to_out &
+            (all | (wall_rigid & ((kj == Kind::kRigid) | (kj == Kind::kElastic)))));
         if (contacts && kj != Kind::kFluid && j != self && r2 < cr2 &&
             ((kj == Kind::kRigid && contact->body[j] != contact->body[i]) ||
              (kj == Kind::kWall && contact->walls))) {

@@ -336,16 +336,11 @@ TEST(ThermalFsi, ContactTemperatureOfAFluidAndAnElasticBlock) {
 
 // The erfc profile inside an elastic slab lying on a wall held at T = 2 (T = 1 + erfc), as
 // Conduction.SolidSlabOnADirichletWallErfc checks it for a rigid slab, and the same box with
-// the slab rigid. Disabled: the wall's Dirichlet mirror 2 T_D - T~ averages T~ over the wall
-// particle's neighbour list, and with conduction a wall lists its fluid and rigid neighbours
-// only (solver/core/neighbor_list.cc: `wall_rigid & (kj == Kind::kRigid)`, and cell_kinds_
-// marks no cell of elastic particles, so a wall with only elastic particles near gets no list).
-// The mirror then falls back to T_D and the slab draws about half the flux: max error 6.1e-2
-// at dx = 0.02 and 3.2e-2 at dx = 0.01 (the rigid slab's before that was fixed for rigid
-// particles), 3.0e-2 from the rigid slab's temperatures. With kElastic listed beside kRigid
-// in both places it passes (8.0e-3, the closed box's error, and equal to the rigid slab's);
-// enable it with that fix.
-TEST(ThermalFsi, DISABLED_ElasticSlabOnADirichletWallErfc) {
+// the slab rigid. The wall's Dirichlet mirror 2 T_D - T~ averages T~ over the wall particle's
+// neighbour list, so a wall beside elastic particles only must list them (before it did not:
+// the mirror fell back to T_D and the slab drew about half the flux, max error 6.1e-2 at
+// dx = 0.02 and 3.2e-2 at dx = 0.01).
+TEST(ThermalFsi, ElasticSlabOnADirichletWallErfc) {
   const double t_end = 0.01;
   auto exact = [&](double x, double) { return 1 + std::erfc(x / (2 * std::sqrt(t_end))); };
   const std::string common = R"(
