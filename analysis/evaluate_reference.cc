@@ -13,6 +13,7 @@
 #include "analysis/result_reader.h"
 #include "analysis/richardson.h"
 #include "analysis/series_data.h"
+#include "analysis/series_period.h"
 #include "analysis/taylor_green.h"
 #include "case/materials.h"
 #include "case/number_text.h"
@@ -99,6 +100,12 @@ Measurement evaluate_reference(const v1::Case& c, const std::string& result_h5) 
     }
     case v1::Reference::kRichardson:
       return richardson_quantity(c, rr);
+    case v1::Reference::kSeriesPeriod: {
+      const auto& r = ref.series_period();
+      std::vector<double> t, v;
+      read_scalar_series(rr, r.series(), r.component(), false, "reference.series_period", t, v);
+      return series_period_error(t, v, r);
+    }
     default:
       throw std::runtime_error("reference: no kind given");
   }
@@ -166,6 +173,19 @@ std::string describe_reference(const v1::Case& c) {
            r.offset() != 0 ? cat({" minus ", number_text(r.offset())}) : "",
            ", q* by Richardson extrapolation from the finest levels",
            r.has_order() ? cat({" with order ", number_text(r.order())}) : " (order estimated)"});
+    }
+    case v1::Reference::kSeriesPeriod: {
+      const auto& r = ref.series_period();
+      const int first = r.has_first_cycle() ? r.first_cycle() : 1;
+      const int cycles = r.has_cycles() ? r.cycles() : 1;
+      const std::string which =
+          cycles == 1 ? (first == 1 ? std::string("the first period")
+                                    : cat({"the period of cycle ", std::to_string(first)}))
+                      : cat({"the mean period of cycles ", std::to_string(first), " to ",
+                             std::to_string(first + cycles - 1)});
+      return cat({"|T / T_exact - 1|, T ", which, " of ", r.series(), "[",
+                  std::to_string(r.component()), "] from its crossings of ", number_text(r.mean()),
+                  " (linear interpolation), T_exact = ", number_text(r.period()), " s"});
     }
     default:
       return "(no reference)";

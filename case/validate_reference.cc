@@ -39,10 +39,13 @@ class ReferenceValidator {
       case v1::Reference::kRichardson:
         richardson(r.richardson());
         break;
+      case v1::Reference::kSeriesPeriod:
+        series_period(r.series_period());
+        break;
       default:
         error("reference",
-              "give one kind: channel_flow, hydrostatic, taylor_green, conduction, series_data "
-              "or richardson");
+              "give one kind: channel_flow, hydrostatic, taylor_green, conduction, series_data, "
+              "richardson or series_period");
     }
     return std::move(errors_);
   }
@@ -155,8 +158,58 @@ class ReferenceValidator {
                          "of the case's probes");
       return;
     }
+    if (group == "elastic") {
+      elastic_series(s.substr(slash + 1), s, field);
+      return;
+    }
     error(field, "unknown series group '" + group +
-                     "' (diagnostics, bodies, probes or phase; see solver/io/result_file.h)");
+                     "' (diagnostics, bodies, probes, phase or elastic; see "
+                     "solver/io/result_file.h)");
+  }
+
+  // "elastic/BODY/QUANTITY" (solver/elastic/elastic_solid.h): BODY an elastic body's name
+  // (body<index> when it has none), QUANTITY displacement (which needs observation points),
+  // kinetic_energy or strain_energy.
+  void elastic_series(const std::string& rest, const std::string& s, const std::string& field) {
+    const auto second = rest.find('/');
+    const std::string body = rest.substr(0, second);
+    const std::string quantity = second == std::string::npos ? "" : rest.substr(second + 1);
+    const v1::ElasticBody* found = nullptr;
+    for (int k = 0; k < c_.elastic_bodies_size(); ++k) {
+      const auto& e = c_.elastic_bodies(k);
+      if ((e.name().empty() ? "body" + std::to_string(k) : e.name()) == body) found = &e;
+    }
+    if (found == nullptr) {
+      error(field, "\"" + s +
+                       "\" does not name one of the case's elastic bodies "
+                       "(\"elastic/BODY/QUANTITY\")");
+      return;
+    }
+    if (quantity == "displacement") {
+      if (found->observation_points_size() == 0)
+        error(field, "\"" + s + "\" needs observation_points on elastic body '" + body + "'");
+      return;
+    }
+    if (quantity != "kinetic_energy" && quantity != "strain_energy")
+      error(field, "\"" + s +
+                       "\": an elastic body writes displacement, kinetic_energy and "
+                       "strain_energy");
+  }
+
+  // The number of values in one sample of an elastic series, or 0 when not known here.
+  int elastic_row(const std::string& s) const {
+    if (s.rfind("elastic/", 0) != 0) return 0;
+    const std::string rest = s.substr(8);
+    const auto second = rest.find('/');
+    if (second == std::string::npos) return 0;
+    const std::string body = rest.substr(0, second), quantity = rest.substr(second + 1);
+    for (int k = 0; k < c_.elastic_bodies_size(); ++k) {
+      const auto& e = c_.elastic_bodies(k);
+      if ((e.name().empty() ? "body" + std::to_string(k) : e.name()) != body) continue;
+      if (quantity == "displacement") return e.observation_points_size() * c_.dimension();
+      return 1;
+    }
+    return 0;
   }
 
   void series_data(const v1::SeriesDataReference& r) {
@@ -198,6 +251,49 @@ class ReferenceValidator {
     if (r.has_order()) positive(r.order(), f + "order");
     if (r.has_scale()) positive(r.scale(), f + "scale");
     finite(r.offset(), f + "offset");
+  }
+
+  void series_period(const v1::SeriesPeriodReference& r) {
+    const std::string f = "reference.series_period.";
+    const std::size_t before = errors_.size();
+    series(r.series(), f + "series");
+    if (r.component() < 0) {
+      error(f + "component", "must be >= 0");
+    } else if (const int row = elastic_row(r.series());
+               errors_.size() == before && row > 0 && r.component() >= row) {
+      error(f + "component", "must be below " + std::to_string(row) + ": \"" + r.series() +
+                                 "\" has " + std::to_string(row) +
+                                 " values per sample (point * dimension + axis)");
+    }
+    positive(r.period(), f + "period");
+    finite(r.mean(), f + "mean");
+    // Bounded so that the crossing index 2 (first_cycle + cycles) stays far from overflow.
+    constexpr int kMaxCycles = 1000000;
+    const int first = r.has_first_cycle() ? r.first_cycle() : 1;
+    const int cycles = r.has_cycles() ? r.cycles() : 1;
+    if (first < 1 || first > kMaxCycles)
+      error(f + "first_cycle", "must be in [1, " + std::to_string(kMaxCycles) + "] (got " +
+                                   std::to_string(first) + ")");
+    if (cycles < 1 || cycles > kMaxCycles)
+      error(f + "cycles", "must be in [1, " + std::to_string(kMaxCycles) + "] (got " +
+                              std::to_string(cycles) + ")");
+    if (errors_.size() != before) return;
+    // The exact period is the least the run must cover; a coarse level's period is longer.
+    const double needed = (first - 1 + cycles) * r.period();
+    if (c_.time().end_time() < needed)
+      error("time.end_time", "must be at least " + num(needed) +
+                                 " s for reference.series_period (" +
+                                 std::to_string(first - 1 + cycles) + " periods of " +
+                                 num(r.period()) + " s); got " + num(c_.time().end_time()));
+    // Ten samples per period leave the linearly interpolated crossing times within about 0.1%
+    // of the period (the interpolation error of a sine at its zero is O((omega dt)^3)).
+    const double interval = c_.output().series_interval() > 0 ? c_.output().series_interval()
+                                                              : c_.time().end_time() / 100;
+    if (interval > r.period() / 10)
+      error("output.series_interval",
+            "must be at most reference.series_period.period / 10 = " + num(r.period() / 10) +
+                " s so that the crossings are resolved (got " + num(interval) +
+                (c_.output().series_interval() > 0 ? " s)" : " s, the default end_time / 100)"));
   }
 
   const v1::Case& c_;
