@@ -82,6 +82,9 @@ std::vector<std::size_t> ResultReader::series_shape(const std::string& name) con
 
 std::string ResultReader::time_series_of(const std::string& name) {
   if (name.rfind("phase/", 0) == 0) return "bodies/time";
+  // The elastic unit's series are sampled with the diagnostics (its sample() runs in
+  // Simulation::record_series) and have no time series of their own.
+  if (name.rfind("elastic/", 0) == 0) return "diagnostics/time";
   const auto slash = name.rfind('/');
   return (slash == std::string::npos ? std::string() : name.substr(0, slash + 1)) + "time";
 }

@@ -40,7 +40,8 @@ class ResultReader {
   // Extents of a series dataset: {samples, ...} (e.g. {samples, bodies, D} for bodies/position).
   std::vector<std::size_t> series_shape(const std::string& name) const;
   // The sample times of a series: "G/time" of its group ("probes/P/time" for probe series;
-  // phase/* is sampled with the bodies, so "bodies/time").
+  // phase/* is sampled with the bodies, so "bodies/time"; elastic/* with the diagnostics, so
+  // "diagnostics/time").
   std::vector<double> series_time(const std::string& name) const;
   static std::string time_series_of(const std::string& name);
 
