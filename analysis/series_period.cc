@@ -48,11 +48,14 @@ Measurement series_period_error(const std::vector<double>& t, const std::vector<
   const std::size_t from = 2 * static_cast<std::size_t>(first - 1);
   const std::size_t to = from + 2 * static_cast<std::size_t>(cycles);
   if (to >= c.size()) {
+    const std::string which = cycles == 1 ? "cycle " + std::to_string(first)
+                                          : "cycles " + std::to_string(first) + " to " +
+                                                std::to_string(first + cycles - 1);
     char buf[300];
     std::snprintf(buf, sizeof buf,
-                  "reference.series_period: the series crosses %.6g %zu times up to t = %.6g; "
-                  "cycles %d to %d need %zu (run longer: time.end_time)",
-                  r.mean(), c.size(), t.back(), first, first + cycles - 1, to + 1);
+                  "reference.series_period: the series crosses its mean (%.6g) %zu times up to "
+                  "t = %.6g; %s need%s %zu (run longer: time.end_time)",
+                  r.mean(), c.size(), t.back(), which.c_str(), cycles == 1 ? "s" : "", to + 1);
     throw std::runtime_error(buf);
   }
   Measurement m;
