@@ -6,7 +6,7 @@ oscillating_plate_2d.textproto) by three theories, for docs/accuracy.md:
       kappa G A (w'' - psi') + rho A omega^2 w = 0
       E' I psi'' + kappa G A (w' - psi) + rho I omega^2 psi = 0
     with w = psi = 0 at the clamp and psi' = 0, w' - psi = 0 at the free end (Han, Benaroya &
-    Wei 1999, J. Sound Vib. 225(5) 935-988, sec. 5), for the shear coefficients 5/6 and
+    Wei 1999, J. Sound Vib. 225(5) 935-988), for the shear coefficients 5/6 and
     Cowper's 10 (1 + nu) / (12 + 11 nu) (J. Appl. Mech. 33, 1966);
   - plane-strain linear elasticity of the plate's rectangle x in [0, L], clamped at x = 0 (the
     SPH clamp holds every particle with x < 0 fixed), by finite elements (9-node quadrilaterals,

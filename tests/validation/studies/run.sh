@@ -32,6 +32,7 @@ studies=(
   "cooled_block|cases/cooled_block_channel_2d.textproto|--study-refine 4"
   "dam_break|cases/dambreak_martin_moyce_2d.textproto|--study-dx 0.05,0.0354,0.025,0.0177"
   "falling_disk|cases/studies/falling_disk_2d.textproto|--study-refine 4"
+  "oscillating_plate|cases/studies/oscillating_plate_2d.textproto|--study-dx 0.004,0.002,0.001,0.0005"
 )
 
 coarse=0
