@@ -2,6 +2,12 @@
 #include "case/validate/validator.h"
 
 namespace sph::case_validation {
+namespace {
+
+// Largest Material.hourglass_control (Ganzenmueller's alpha) accepted.
+constexpr double kMaxHourglassControl = 10;
+
+}  // namespace
 
 void Validator::materials() {
   for (int i = 0; i < c_.materials_size(); ++i) {
@@ -67,6 +73,7 @@ void Validator::elastic_constants(const v1::Material& m, const std::string& f) {
     if (m.has_poisson_ratio()) error(cat(f, "poisson_ratio"), why);
     if (m.elastic_law() != v1::ELASTIC_LAW_UNSPECIFIED) error(cat(f, "elastic_law"), why);
     if (m.elastic_damping() != 0) error(cat(f, "elastic_damping"), why);
+    if (m.has_hourglass_control()) error(cat(f, "hourglass_control"), why);
     return;
   }
   if (m.has_youngs_modulus())
@@ -77,6 +84,14 @@ void Validator::elastic_constants(const v1::Material& m, const std::string& f) {
               "); 0.5 is incompressible: the bulk modulus E / (3 (1 - 2 nu)) and with it the "
               "sound speed are infinite, and explicit total Lagrangian SPH cannot run it");
   non_negative(m.elastic_damping(), cat(f, "elastic_damping"));
+  // Ganzenmueller's alpha scales a spring of stiffness alpha E / 2 per pair: beyond about 10 it
+  // outweighs the material's own stiffness at the particle scale, and the step it needs (bounded
+  // by 0.6 / omega_hg, solver/elastic/hourglass_control.h) shrinks as 1 / sqrt(alpha).
+  if (m.has_hourglass_control() &&
+      !(m.hourglass_control() >= 0 && m.hourglass_control() <= kMaxHourglassControl))
+    error(cat(f, "hourglass_control"), "must be in [0, " + num(kMaxHourglassControl) + "] (got " +
+                                           num(m.hourglass_control()) +
+                                           "); 0 turns the hourglass control off");
   if (!v1::ElasticLaw_IsValid(m.elastic_law()))
     error(cat(f, "elastic_law"), "unknown value " + std::to_string(m.elastic_law()) +
                                      " (SAINT_VENANT_KIRCHHOFF or NEO_HOOKEAN)");

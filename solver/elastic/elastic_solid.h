@@ -33,7 +33,9 @@
 // with c_s = sqrt(K / rho0) the largest of the bodies' materials and the maxima over the free
 // elastic particles (speeds of the constrained ones too) of all ranks: a maximum is exact, so
 // the bound is the same on any rank count; with Kelvin-Voigt damping also
-//   dt <= cfl_factor 0.125 h^2 rho0 / eta_d (an explicit viscous bound).
+//   dt <= cfl_factor 0.125 h^2 rho0 / eta_d (an explicit viscous bound),
+// and with hourglass control (solver/elastic/hourglass_control.h, Material.hourglass_control)
+//   dt <= cfl_factor 0.6 / omega_hg, omega_hg the frequency it gives the checkerboard mode.
 //
 // Output: snapshot fields "elastic_displacement_x/_y/_z" (x - X), "von_mises_stress" (of the
 // Cauchy stress; plane strain in 2D) and "elastic_strain" (equivalent strain of the
@@ -57,6 +59,7 @@
 #include "case/motion.h"
 #include "solver/diagnostics/stability_guards.h"
 #include "solver/elastic/elastic_law.h"
+#include "solver/elastic/hourglass_control.h"
 #include "solver/elastic/total_lagrangian.h"
 #include "solver/parallel/exact_sum.h"
 #include "solver/physics/body_force.h"
@@ -128,6 +131,7 @@ class ElasticSolid final : public Unit<D> {
   // explicit viscous bound 0.125 h^2 / nu (Morris 1997; the fluid's in Fuchs 2021 eq. 41).
   static constexpr double kDampingStepFactor = 0.125;
   double damping_dt_ = std::numeric_limits<double>::infinity();
+  HourglassControl<D> hourglass_;  // solver/elastic/hourglass_control.h
   bool observed_found_ = false;
   std::vector<std::pair<ParticleId, std::size_t>> slots_;  // observed id -> series slot
   std::string failure_;
@@ -218,6 +222,8 @@ ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
       damping_dt_ =
           std::min(damping_dt_, kDampingStepFactor * h_ * h_ * mp.rho0 / mp.elastic_damping);
   }
+  hourglass_ = HourglassControl<D>(c, b.materials, kernel_, b.dx);
+  damping_dt_ = std::min(damping_dt_, kTimeStepFactor * hourglass_.time_scale());
   // The bound at rest, h / c_s: the smallest the step can be without motion, and what the
   // run starts from before the first forces.
   if (sound_speed_ > 0) max_dt_ = cfl_ * kTimeStepFactor * h_ / sound_speed_;
@@ -299,8 +305,12 @@ void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
       const Mat<D> Fi = sums.position * B;
       const double J = Fi.determinant();
       if (!(J > 0)) {
-        char buf[96];
-        std::snprintf(buf, sizeof buf, "inverted particle (det F = %.3g <= 0)", J);
+        char buf[160];
+        std::snprintf(
+            buf, sizeof buf, "inverted particle (det F = %.3g <= 0%s)", J,
+            hourglass_.stiffness(mat[i]) > 0
+                ? ""
+                : "; if a checkerboard grew into it, Material.hourglass_control 0.1 holds it");
         fail(s, i, ctx, buf);
       } else {
         F = Fi;
@@ -312,7 +322,11 @@ void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
     }
     F_[i] = F;
   }
-  ctx.halo.update(s, {&pb_});  // the momentum sum reads P B of the neighbours
+  // The momentum sum reads P B of the neighbours, the hourglass force their F.
+  if (hourglass_.active())
+    ctx.halo.update(s, {&pb_, &F_});
+  else
+    ctx.halo.update(s, {&pb_});
   // Pass 2: the momentum equation (eqs. 3.8-3.9), the fluid's force and gravity.
   const Vec<D> g = BodyForce<D>::damping_factor(ctx.t, gravity_ramp_) * gravity_;
   const Mat<D>* pb = pb_.data();
@@ -321,7 +335,10 @@ void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
     if (kind[i] != Kind::kElastic) continue;
     const double m = s.m[i];
     const double V0 = m * inv_rho0_[mat[i]];
-    Vec<D> acc = (internal_force<D>(refs_, i, pb, V0) + fluid_force_[i]) / m;
+    Vec<D> f = internal_force<D>(refs_, i, pb, V0) + fluid_force_[i];
+    if (hourglass_.active())
+      f += hourglass_.force(refs_, i, X, x, F_.data(), s.m.data(), mat, inv_rho0_.data(), kernel_);
+    Vec<D> acc = f / m;
     if (bodies_[body_[i]].gravity) acc += g;
     s.a[i] += acc;  // forces accumulate (solver/seam/unit.h)
     v_max = std::max(v_max, v[i].norm());

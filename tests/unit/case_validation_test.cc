@@ -610,8 +610,10 @@ elastic_bodies { name: "vortex" material: "rubber"
 TEST(CaseValidation, ElasticMaterialConstants) {
   // On a FLUID material each elastic field is refused by name.
   auto errs = errors_of(R"(materials { name: "oil" density: 900 eos { sound_speed: 10 }
-  youngs_modulus: 1e6 poisson_ratio: 0.3 elastic_law: NEO_HOOKEAN elastic_damping: 1 })");
-  for (const char* field : {"youngs_modulus", "poisson_ratio", "elastic_law", "elastic_damping"})
+  youngs_modulus: 1e6 poisson_ratio: 0.3 elastic_law: NEO_HOOKEAN elastic_damping: 1
+  hourglass_control: 0.1 })");
+  for (const char* field :
+       {"youngs_modulus", "poisson_ratio", "elastic_law", "elastic_damping", "hourglass_control"})
     EXPECT_TRUE(has_error(errs, std::string("materials[1].") + field, "set on a FLUID material"))
         << field << ": " << dump(errs);
   // Ranges on a SOLID material.
@@ -626,6 +628,22 @@ TEST(CaseValidation, ElasticMaterialConstants) {
       << dump(errs);
   EXPECT_TRUE(has_error(errs, "materials[1].elastic_damping", "must be >= 0 (got -1)"))
       << dump(errs);
+  // Hourglass control: alpha in [0, 10] (not finite: refused before, by the case's bounds).
+  const auto with_alpha = [&](const char* alpha) {
+    return errors_of(std::string(R"(materials { name: "gel" phase: SOLID density: 1000
+  youngs_modulus: 1e6 poisson_ratio: 0.3 hourglass_control: )") +
+                     alpha + " }");
+  };
+  for (const char* alpha : {"-0.1", "11"})
+    EXPECT_TRUE(has_error(with_alpha(alpha), "materials[1].hourglass_control",
+                          std::string("must be in [0, 10] (got ") + alpha + ")"))
+        << alpha << ": " << dump(with_alpha(alpha));
+  for (const char* alpha : {"inf", "nan"})
+    EXPECT_TRUE(has_error(with_alpha(alpha), "materials[1].hourglass_control", "must be finite"))
+        << alpha << ": " << dump(with_alpha(alpha));
+  for (const char* alpha : {"0", "0.1", "10"})
+    for (const auto& e : with_alpha(alpha))
+      EXPECT_EQ(e.field.find("hourglass_control"), std::string::npos) << alpha << ": " << e.message;
   errs = errors_of(
       R"(materials { name: "gel" phase: SOLID density: 1000 youngs_modulus: 1e6 poisson_ratio: -0.1 })");
   EXPECT_TRUE(has_error(errs, "materials[1].poisson_ratio", "must be in [0, 0.5) (got -0.1)"))

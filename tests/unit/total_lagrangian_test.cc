@@ -4,7 +4,9 @@
 // alike; the internal forces of a uniformly deformed block sum to zero and vanish in its
 // interior; a stretched bar pulls its ends inwards with the force P A across any section.
 // Then the unit that runs them (solver/elastic/elastic_solid.h) on the same blocks: its
-// accelerations, time-step bound, gravity, constraints and guards.
+// accelerations, time-step bound, gravity, constraints and guards; and its hourglass control
+// (solver/elastic/hourglass_control.h): zero for affine deformations and rotations, momentum
+// and angular momentum conserved, a checkerboard mode held at the frequency it predicts.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -13,6 +15,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <limits>
+#include <numbers>
+#include <random>
 #include <vector>
 
 #include "case/materials.h"
@@ -21,6 +26,7 @@
 #include "solver/core/pair_kernel.h"
 #include "solver/elastic/elastic_law.h"
 #include "solver/elastic/elastic_solid.h"
+#include "solver/elastic/hourglass_control.h"
 #include "solver/elastic/total_lagrangian.h"
 #include "solver/io/hdf5.h"
 #include "solver/io/result_file.h"
@@ -552,6 +558,300 @@ TEST(ElasticSolidUnit, GuardsNameInvertedAndTornParticles) {
     std::printf("one row of particles: %s\n", why.c_str());
     EXPECT_NE(why.find("elastic body bar: singular correction matrix"), std::string::npos);
   }
+}
+
+// Hourglass control (solver/elastic/hourglass_control.h, Ganzenmueller 2015). The material of
+// the tests above with alpha = 1: k = alpha E / 2 per side of a pair.
+constexpr double kHourglassE = 2.0e6, kHourglassAlpha = 1.0;
+
+template <int D>
+std::vector<MaterialParams> hourglass_materials(v1::Case& c) {
+  auto* m = c.add_materials();
+  m->set_name("plate");
+  m->set_phase(v1::SOLID);
+  m->set_density(kRho0);
+  m->set_youngs_modulus(kHourglassE);
+  m->set_poisson_ratio(0.3975);
+  m->set_hourglass_control(kHourglassAlpha);
+  return resolve_materials(c);
+}
+
+// F of every particle of block body 0 (identity elsewhere), ghosts refreshed as the unit does,
+// then the hourglass force on each.
+template <int D, class K>
+std::vector<Vec<D>> hourglass_forces(Block<D, K>& b, Column<Mat<D>>& F) {
+  v1::Case c;
+  const std::vector<MaterialParams> mats = hourglass_materials<D>(c);
+  const HourglassControl<D> hg(c, mats, b.kernel, kDx);
+  EXPECT_TRUE(hg.active());
+  EXPECT_EQ(hg.stiffness(0), 0.5 * kHourglassAlpha * kHourglassE);
+  for (std::size_t i = 0; i < b.s.owned(); ++i) {
+    F[i] = Mat<D>::Identity();
+    if (!b.of_block(i)) continue;
+    const ReferenceSums<D> sums =
+        reference_sums<D>(b.refs, i, b.X.data(), b.s.x.data(), b.s.v.data());
+    F[i] = sums.position * sums.moment.inverse();
+  }
+  b.halo.update(b.s, {&F});
+  std::vector<Vec<D>> f(b.s.owned(), Vec<D>::Zero());
+  for (std::size_t i = 0; i < b.s.owned(); ++i)
+    if (b.of_block(i))
+      f[i] = hg.force(b.refs, i, b.X.data(), b.s.x.data(), F.data(), b.s.m.data(),
+                      b.s.material.data(), b.inv_rho0.data(), b.kernel);
+  return f;
+}
+
+// The scale of one particle's hourglass force were every pair off by its own length:
+// k V0 sum_b V0_b W / |X_ab|^2 |X_ab|, bounded by k V0 S r_c with S the lattice sum.
+template <int D, class K>
+double hourglass_force_scale(const Block<D, K>& b) {
+  return 0.5 * kHourglassAlpha * kHourglassE * std::pow(kDx, D) *
+         HourglassControl<D>::lattice_sum(b.kernel, kDx) * b.rc;
+}
+
+template <int D>
+Mat<D> rotation() {
+  const double a = 0.5, c = std::cos(a), s = std::sin(a);
+  Mat<D> R = Mat<D>::Identity();
+  if constexpr (D == 2) {
+    R << c, -s, s, c;
+  } else {
+    Mat<D> Rz, Rx;
+    Rz << c, -s, 0, s, c, 0, 0, 0, 1;
+    Rx << 1, 0, 0, 0, c, -s, 0, s, c;
+    R = Rx * Rz;
+  }
+  return R;
+}
+
+// For x = A X + c, for a rigid rotation x = R X + c and for both (R A), F is exact on every
+// particle, boundary ones too, so every pair lies where F predicts: no hourglass force.
+template <int D>
+void hourglass_force_vanishes_for_affine_maps(const std::array<int, D>& n) {
+  const Vec<D> c = Vec<D>::Constant(0.3 * kDx);
+  const Mat<D> maps[3] = {deformation<D>(), rotation<D>(), rotation<D>() * deformation<D>()};
+  const char* names[3] = {"linear deformation", "rigid rotation", "rotated deformation"};
+  for (int k = 0; k < 3; ++k) {
+    const Mat<D> A = maps[k];
+    Block<D, WendlandC2<D>> b(
+        n, [&](const Vec<D>& X) -> Vec<D> { return A * X + c; },
+        [](const Vec<D>&) -> Vec<D> { return Vec<D>::Zero(); });
+    auto& F = b.s.template add<Mat<D>>("elastic_deformation_gradient", "test", false);
+    const std::vector<Vec<D>> f = hourglass_forces(b, F);
+    double largest = 0;
+    for (std::size_t i = 0; i < b.s.owned(); ++i)
+      if (b.of_block(i)) largest = std::max(largest, f[i].norm());
+    const double scale = hourglass_force_scale(b);
+    std::printf("%dD hourglass force under a %s: max |f| / (k V0 S r_c) = %.2e\n", D, names[k],
+                largest / scale);
+    EXPECT_LT(largest, 1e-12 * scale) << names[k];
+  }
+}
+
+TEST(HourglassControl, VanishesForAffineDeformationAndRotation2D) {
+  hourglass_force_vanishes_for_affine_maps<2>({12, 9});
+}
+
+TEST(HourglassControl, VanishesForAffineDeformationAndRotation3D) {
+  hourglass_force_vanishes_for_affine_maps<3>({8, 7, 6});
+}
+
+// Every particle of a deformed block moved by a random 10% of dx: the hourglass forces sum to
+// zero and so do their moments about the origin (each pair's two terms are opposite and along
+// x_ab), to round-off.
+template <int D>
+void hourglass_force_conserves_momenta(const std::array<int, D>& n) {
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<double> jitter(-0.1 * kDx, 0.1 * kDx);
+  const Mat<D> A = deformation<D>();
+  Block<D, WendlandC2<D>> b(
+      n,
+      [&](const Vec<D>& X) -> Vec<D> {
+        Vec<D> x = A * X;
+        for (int a = 0; a < D; ++a) x[a] += jitter(rng);
+        return x;
+      },
+      [](const Vec<D>&) -> Vec<D> { return Vec<D>::Zero(); });
+  auto& F = b.s.template add<Mat<D>>("elastic_deformation_gradient", "test", false);
+  const std::vector<Vec<D>> f = hourglass_forces(b, F);
+  Vec<D> total = Vec<D>::Zero();
+  Vec<3> moment = Vec<3>::Zero();
+  double magnitude = 0, moment_magnitude = 0;
+  for (std::size_t i = 0; i < b.s.owned(); ++i) {
+    if (!b.of_block(i)) continue;
+    total += f[i];
+    magnitude += f[i].norm();
+    Vec<3> x3 = Vec<3>::Zero(), f3 = Vec<3>::Zero();
+    for (int a = 0; a < D; ++a) x3[a] = b.s.x[i][a], f3[a] = f[i][a];
+    moment += x3.cross(f3);
+    moment_magnitude += x3.norm() * f3.norm();
+  }
+  std::printf(
+      "%dD block jittered by 10%% of dx: hourglass forces sum |f| = %.4g N, |sum f| / sum |f| = "
+      "%.2e, |sum x x f| / sum |x| |f| = %.2e\n",
+      D, magnitude, total.norm() / magnitude, moment.norm() / moment_magnitude);
+  EXPECT_GT(magnitude, 1e-3 * hourglass_force_scale(b));
+  EXPECT_LT(total.norm(), 1e-13 * magnitude);
+  EXPECT_LT(moment.norm(), 1e-13 * moment_magnitude);
+}
+
+TEST(HourglassControl, ConservesMomentumAndAngularMomentum2D) {
+  hourglass_force_conserves_momenta<2>({12, 9});
+}
+
+TEST(HourglassControl, ConservesMomentumAndAngularMomentum3D) {
+  hourglass_force_conserves_momenta<3>({8, 7, 6});
+}
+
+// The checkerboard u_a = u (-1)^(i + j (+ k)) is a zero-energy mode of the scheme: in the deep
+// interior F = I exactly (the neighbours' displacements are even under b -> -b, the kernel
+// gradients odd), so the elastic force does not see it. The hourglass force does: with
+// eps = -(u_a - u_b), 2u_a for the neighbours of the other colour, 0 for the same colour,
+//   f_a = -4 k V0 sum_odd V0 W / X^2 (u_a . e) e = -(2 alpha E / D) V0 S_odd u_a
+// to first order in u (the second moment of a cubic lattice shell is isotropic), S_odd the
+// lattice sum over the other colour: a spring that gives the mode omega^2 = 2 alpha E S_odd /
+// (D rho0).
+template <int D>
+double other_colour_sum(const WendlandC2<D>& kernel) {
+  const double rc = kernel.support_radius();
+  const int n = static_cast<int>(std::ceil(rc / kDx));
+  double s = 0;
+  for (int k = D == 3 ? -n : 0; k <= (D == 3 ? n : 0); ++k)
+    for (int j = -n; j <= n; ++j)
+      for (int i = -n; i <= n; ++i) {
+        const double r2 = kDx * kDx * (i * i + j * j + k * k);
+        if ((i + j + k) % 2 == 0 || !(r2 < rc * rc)) continue;
+        s += std::pow(kDx, D) * kernel.W(std::sqrt(r2)) / r2;
+      }
+  return s;
+}
+
+template <int D>
+int colour(const Vec<D>& X) {
+  int sum = 0;
+  for (int a = 0; a < D; ++a) sum += static_cast<int>(std::floor(X[a] / kDx));
+  return sum % 2 == 0 ? 1 : -1;
+}
+
+template <int D>
+void checkerboard_meets_a_spring(const std::array<int, D>& n) {
+  Vec<D> u = Vec<D>::Zero();
+  u[0] = 1e-5 * kDx;
+  u[1] = -0.6e-5 * kDx;
+  Block<D, WendlandC2<D>> b(
+      n, [&](const Vec<D>& X) -> Vec<D> { return X + colour<D>(X) * u; },
+      [](const Vec<D>&) -> Vec<D> { return Vec<D>::Zero(); });
+  auto& F = b.s.template add<Mat<D>>("elastic_deformation_gradient", "test", false);
+  const std::vector<Vec<D>> f = hourglass_forces(b, F);
+  const double spring =
+      2 * kHourglassAlpha * kHourglassE / D * std::pow(kDx, D) * other_colour_sum<D>(b.kernel);
+  double err_F = 0, err_f = 0, boundary = -std::numeric_limits<double>::infinity();
+  int deep = 0;
+  for (std::size_t i = 0; i < b.s.owned(); ++i) {
+    if (!b.of_block(i)) continue;
+    const Vec<D> expect = -spring * colour<D>(b.X[i]) * u;
+    if (b.depth(i) >= 2.0 * b.rc) {
+      ++deep;
+      err_F = std::max(err_F, (F[i] - Mat<D>::Identity()).cwiseAbs().maxCoeff());
+      err_f = std::max(err_f, (f[i] - expect).norm() / expect.norm());
+    } else {
+      // Near the surface the mode is not one of zero energy; the force still opposes it.
+      boundary = std::max(boundary, f[i].dot(colour<D>(b.X[i]) * u));
+    }
+  }
+  std::printf(
+      "%dD checkerboard of amplitude 1e-5 dx, %d deep particles: max |F - I| = %.2e, hourglass "
+      "force vs -(2 alpha E / D) V0 S_odd u relative %.2e; largest f . u near the surface %.2e "
+      "N m\n",
+      D, deep, err_F, err_f, boundary);
+  EXPECT_GT(deep, 0);
+  EXPECT_LT(err_F, 1e-12);
+  EXPECT_LT(err_f, 1e-4);
+  EXPECT_LT(boundary, 0.0);
+}
+
+TEST(HourglassControl, CheckerboardModeMeetsASpring2D) {
+  checkerboard_meets_a_spring<2>({16, 14});
+}
+
+TEST(HourglassControl, CheckerboardModeMeetsASpring3D) {
+  checkerboard_meets_a_spring<3>({12, 12, 12});
+}
+
+// The unit on a block set moving in the checkerboard mode, v_a = v0 (-1)^(i + j) e_x, and
+// advanced by kick-drift-kick with its own step bound: without hourglass control nothing holds
+// the deep interior back and its checkerboard displacement grows as v0 t; with alpha = 1 it
+// swings as (v0 / omega) sin(omega t), omega^2 = 2 alpha E S_odd / (D rho0), and comes back.
+TEST(HourglassControl, HoldsTheCheckerboardModeOfTheUnit) {
+  const double v0 = 1e-3;
+  WendlandC2<2> kernel(1.3 * kDx);
+  const double omega =
+      std::sqrt(2 * kHourglassAlpha * kHourglassE * other_colour_sum<2>(kernel) / (2 * kRho0));
+  const double period = 2 * std::numbers::pi / omega;
+  struct Swing {
+    double largest = 0, at_end = 0, first_return = 0;
+    long steps = 0;
+  };
+  const auto swing = [&](bool control) {
+    Block<2, WendlandC2<2>> b(
+        {30, 30}, [](const Vec<2>& X) -> Vec<2> { return X; },
+        [&](const Vec<2>& x) -> Vec<2> { return Vec<2>(v0 * colour<2>(x), 0.0); });
+    UnitCase uc(false, false);
+    if (control) uc.c.mutable_materials(0)->set_hourglass_control(kHourglassAlpha);
+    uc.mats = resolve_materials(uc.c);
+    UnitOnBlock<2> u(b, uc);
+    Swing out;
+    double t = 0, previous = 0;
+    const auto amplitude = [&] {
+      double sum = 0;
+      int count = 0;
+      for (std::size_t i = 0; i < b.s.owned(); ++i)
+        if (b.of_block(i) && b.depth(i) >= 2.0 * b.rc) {
+          sum += colour<2>(b.X[i]) * (b.s.x[i][0] - b.X[i][0]);
+          ++count;
+        }
+      return sum / count;
+    };
+    const auto forces = [&] {
+      for (std::size_t i = 0; i < b.s.owned(); ++i) b.s.a[i] = Vec<2>::Zero();
+      u.unit.run(StepPhase::kForces, u.ctx);
+      EXPECT_EQ(u.unit.check(u.ctx), "");
+    };
+    forces();
+    while (t < 0.75 * period) {
+      const double dt = u.unit.max_time_step();
+      for (std::size_t i = 0; i < b.s.owned(); ++i)
+        if (b.s.kind[i] == Kind::kElastic && b.body[i] == 0) {
+          b.s.v[i] += 0.5 * dt * b.s.a[i];
+          b.s.x[i] += dt * b.s.v[i];
+        }
+      b.halo.refresh_ghosts(b.s);
+      forces();
+      for (std::size_t i = 0; i < b.s.owned(); ++i)
+        if (b.s.kind[i] == Kind::kElastic && b.body[i] == 0) b.s.v[i] += 0.5 * dt * b.s.a[i];
+      t += dt;
+      ++out.steps;
+      const double now = amplitude();
+      out.largest = std::max(out.largest, now);
+      if (out.first_return == 0 && previous > 0 && now <= 0)
+        out.first_return = t - dt * now / (now - previous);
+      previous = now;
+    }
+    out.at_end = previous;
+    return out;
+  };
+  const Swing free = swing(false), held = swing(true);
+  std::printf(
+      "checkerboard mode v0 = %g m/s, hourglass period 2 pi / omega = %.4g s: without control "
+      "the deep interior drifts to %.3g m at t = 0.75 T (v0 t = %.3g m, %ld steps); with "
+      "alpha = 1 it swings to %.3g m (v0 / omega = %.3g m) and back through 0 at t = %.4g s "
+      "(T / 2 = %.4g s, %ld steps)\n",
+      v0, period, free.at_end, v0 * 0.75 * period, free.steps, held.largest, v0 / omega,
+      held.first_return, 0.5 * period, held.steps);
+  EXPECT_GT(free.at_end, 0.9 * v0 * 0.75 * period);
+  EXPECT_NEAR(held.largest, v0 / omega, 0.05 * v0 / omega);
+  EXPECT_NEAR(held.first_return, 0.5 * period, 0.05 * period);
+  EXPECT_LT(held.at_end, 0.0);
 }
 
 }  // namespace
