@@ -42,19 +42,14 @@ class SurfaceTensionValidator {
     for (int i = 0; i < st.pairs_size(); ++i) {
       const auto& p = st.pairs(i);
       const bool a_ok = fluid_material(p.material_a(), field("pairs", i, "material_a"), true);
-      bool b_ok = false;
-      if (p.material_b().empty())
-        // A10's colour gradient against void, evaluated where the kernel support is less than
-        // 95% filled, gave a free drop's outermost particles curvatures up to 5 / R on the
-        // staircase of a lattice circle (R/dx = 15) and the run failed within 0.3 capillary
-        // times; refused until that is solved.
-        error(field("pairs", i, "material_b"),
-              "is required: free surfaces (a fluid against void) are not supported yet; model "
-              "the surrounding fluid (e.g. air) as a second FLUID material");
-      else
-        b_ok = fluid_material(p.material_b(), field("pairs", i, "material_b"), true);
       if (!std::isfinite(p.sigma()) || !(p.sigma() > 0))
         error(field("pairs", i, "sigma"), "must be > 0 and finite [N/m]; got " + num(p.sigma()));
+      if (p.material_b().empty()) {
+        // A free surface: material_a against void.
+        if (a_ok) free_surface(p, i);
+        continue;
+      }
+      const bool b_ok = fluid_material(p.material_b(), field("pairs", i, "material_b"), true);
       if (!a_ok || !b_ok) continue;
       if (p.material_a() == p.material_b()) {
         error(field("pairs", i, "material_b"),
@@ -87,10 +82,18 @@ class SurfaceTensionValidator {
       const double theta = w.contact_angle();
       if (!std::isfinite(theta) || !(theta > 0) || !(theta < 180))
         error(field("walls", i, "contact_angle"), "must be in (0, 180) degrees; got " + num(theta));
-      if (fluid_material(w.material(), field("walls", i, "material"), true) &&
-          in_pair_.count(w.material()) == 0)
-        error(field("walls", i, "material"),
-              "material '" + w.material() + "' has no surface tension (it is in no pair)");
+      if (fluid_material(w.material(), field("walls", i, "material"), true)) {
+        if (in_pair_.count(w.material()) == 0)
+          error(field("walls", i, "material"),
+                "material '" + w.material() + "' has no surface tension (it is in no pair)");
+        else if (free_seen_.count(w.material()) != 0)
+          // Measured (docs/surface_tension.md): a free half drop on a floor at 120 degrees
+          // left the floor, at 90 degrees it settled at 108.
+          error(field("walls", i, "material"),
+                "material '" + w.material() +
+                    "' has a free surface: contact angles at a free surface are not supported "
+                    "yet (solids without an angle wet it neutrally, 90 degrees)");
+      }
     }
     return std::move(errors_);
   }
@@ -119,7 +122,32 @@ class SurfaceTensionValidator {
     return true;
   }
 
+  // A pair without material_b: material_a against void (solver/physics/
+  // surface_tension_free_surface.h), once per material.
+  void free_surface(const v1::SurfaceTension::Pair& p, int i) {
+    const auto [it, fresh] = free_seen_.emplace(p.material_a(), i);
+    if (!fresh) {
+      error(field("pairs", i, "material_a"), "duplicate free surface of '" + p.material_a() +
+                                                 "' (already surface_tension.pairs[" +
+                                                 std::to_string(it->second) + "])");
+      return;
+    }
+    in_pair_.insert(p.material_a());
+    // Summation leaves a particle at a free surface with the density of its filled share of
+    // the kernel support, about half of rho0 in the outermost row: a pressure of -c^2 rho0 / 2
+    // there, against which the Laplace pressure sigma / R is lost.
+    if (c_.fluid_model().density() != v1::CONTINUITY && !summation_reported_) {
+      summation_reported_ = true;
+      error("fluid_model.density",
+            "must be CONTINUITY with a free surface under surface tension (surface_tension.pairs[" +
+                std::to_string(i) + "] has no material_b): SUMMATION leaves the surface " +
+                "particles at about half of rho0");
+    }
+  }
+
   const v1::Case& c_;
+  bool summation_reported_ = false;
+  std::map<std::string, int> free_seen_;
   std::map<std::string, v1::MaterialPhase> phase_;
   std::set<std::string> walls_, in_pair_;
   std::vector<FieldError> errors_;

@@ -41,10 +41,9 @@
 //   get kappa G of the same sign, as in A10, and the integral of the force across the
 //   interface is sigma kappa: in 2D the Laplace jump p_in - p_out = sigma / R.
 //
-// Free surfaces (a fluid against void) are not handled: A10's sum over what is there,
-// 1/V_i sum_j (V_i^2 + V_j^2) grad W_ij, evaluated where the kernel support is less than 95%
-// filled, gave the outermost particles of a lattice circle curvatures up to 5 / R, and
-// validation refuses such pairs (docs/surface_tension.md).
+// Free surfaces (a pair whose material_b is empty: the fluid against void) use the same two
+// passes with the void's colour 0 taken where the kernel support is empty
+// (solver/physics/surface_tension_free_surface.h has the why and the equations).
 //
 // Static contact angle (Breinlinger, Polfer, Hashibon, Moseler 2013,
 // J. Comput. Phys. 243): a particle with a normal whose nearest wall neighbour belongs to a wall
@@ -73,6 +72,7 @@
 #include "solver/core/kernel.h"
 #include "solver/core/pair_kernel.h"
 #include "solver/core/types.h"
+#include "solver/physics/surface_tension_free_surface.h"
 #include "solver/seam/unit.h"
 #include "sph/v1/case.pb.h"
 
@@ -110,6 +110,8 @@ class SurfaceTension final : public Unit<D> {
 
   // sigma of materials a and b, 0 without tension.
   double sigma(std::size_t a, std::size_t b) const { return sigma_[a * nm_ + b]; }
+  // sigma of material a against void (a free surface), 0 without.
+  double free_surface_sigma(std::size_t a) const { return sigma_void_[a]; }
 
  private:
   struct ContactAngle {
@@ -120,6 +122,8 @@ class SurfaceTension final : public Unit<D> {
   };
   void normals(StepContext<D>& ctx);
   void curvature_and_force(StepContext<D>& ctx);
+  void free_surface_curvature(StepContext<D>& ctx, std::size_t i);
+  void smoothed_curvature_and_force(StepContext<D>& ctx);
   template <class K>
   void tabulate_depth(const K& kernel);
   // The depth below a planar interface at which the own phase fills the share `colour` of
@@ -129,6 +133,8 @@ class SurfaceTension final : public Unit<D> {
   std::size_t nm_ = 0;                 // materials
   std::vector<double> sigma_;          // nm x nm
   std::vector<char> active_;           // per material: some interface has tension
+  std::vector<double> sigma_void_;     // per material: sigma against void, 0 without
+  bool any_free_ = false;              // some material has a free surface
   std::vector<ContactAngle> contact_;  // per wall of the case
   double wall_volume_ = 0, min_gradient_ = 0, self_weight_ = 0;
   std::vector<double> depth_of_colour_;  // planar_depth() at colours 0.5 + 0.5 k / (size - 1)
@@ -138,6 +144,9 @@ class SurfaceTension final : public Unit<D> {
   Column<Vec<D>>& gradient_;   // G_i = sum_k sigma_ik grad c_i^ik [N/m^2], owned
   Column<double>& curvature_;  // kappa_i [1/m], owned (a snapshot field)
   Column<double>& depth_;      // d_i [m], owned: depth inside the own phase
+  // With a free surface: the curvature before its average over the neighbours (ghosts too).
+  Column<double>* raw_curvature_ = nullptr;
+  Column<double>* gradient_norm_ = nullptr;  // |G_j| (ghosts too), the average's weight
 };
 
 template <int D>
@@ -147,6 +156,7 @@ SurfaceTension<D>::SurfaceTension(const v1::Case& c, const std::vector<MaterialP
     : nm_(materials.size()),
       sigma_(nm_ * nm_, 0.0),
       active_(nm_, 0),
+      sigma_void_(nm_, 0.0),
       contact_(static_cast<std::size_t>(c.walls_size())),
       wall_volume_(wall_volume),
       min_gradient_(kNormalThreshold / h),
@@ -162,6 +172,14 @@ SurfaceTension<D>::SurfaceTension(const v1::Case& c, const std::vector<MaterialP
   const auto& st = c.surface_tension();
   for (const auto& p : st.pairs()) {
     const auto a = static_cast<std::size_t>(material_index(materials, p.material_a()));
+    if (p.material_b().empty()) {
+      sigma_void_[a] = p.sigma();
+      active_[a] = 1;
+      any_free_ = true;
+      max_dt_ = std::min(max_dt_,
+                         cfl_factor * free_surface_capillary_step(materials[a].rho0, h, p.sigma()));
+      continue;
+    }
     const auto o = static_cast<std::size_t>(material_index(materials, p.material_b()));
     sigma_[a * nm_ + o] = sigma_[o * nm_ + a] = p.sigma();
     active_[a] = active_[o] = 1;
@@ -172,6 +190,10 @@ SurfaceTension<D>::SurfaceTension(const v1::Case& c, const std::vector<MaterialP
     max_dt_ = std::min(
         max_dt_,
         cfl_factor * 0.25 * std::sqrt(rho_mean * h * h * h / (2.0 * std::numbers::pi * p.sigma())));
+  }
+  if (any_free_) {
+    raw_curvature_ = &particles.template add<double>("surface_tension_raw_curvature", kName, false);
+    gradient_norm_ = &particles.template add<double>("surface_tension_gradient_norm", kName, false);
   }
   for (const auto& w : st.walls()) {
     ContactAngle ca;
@@ -243,6 +265,12 @@ void SurfaceTension<D>::run(StepPhase /*phase*/, StepContext<D>& ctx) {
   normals(ctx);
   ctx.halo.update(ctx.particles, {&normal_});
   curvature_and_force(ctx);
+  if (raw_curvature_ != nullptr) {
+    for (std::size_t i = 0; i < ctx.particles.owned(); ++i)
+      (*gradient_norm_)[i] = normal_[i].isZero() ? 0.0 : gradient_[i].norm();
+    ctx.halo.update(ctx.particles, {raw_curvature_, gradient_norm_});
+    smoothed_curvature_and_force(ctx);
+  }
 }
 
 template <int D>
@@ -267,10 +295,16 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
     normal_[i] = Vec<D>::Zero();
     gradient_[i] = Vec<D>::Zero();
     curvature_[i] = 0;
+    if (raw_curvature_ != nullptr) (*raw_curvature_)[i] = 0;
     depth_[i] = 0;
     if (kind[i] != Kind::kFluid || !active_[mat[i]]) continue;
     const std::uint16_t mi = mat[i];
     const double* sig = sigma_.data() + mi * nm_;
+    const double sig_void = sigma_void_[mi];
+    const bool free = sig_void > 0;
+    // 1/V_i sum_j (V_i^2 + V_j^2) grad W_ij over everything present, times V_i: A10's colour
+    // gradient with the void's colour 0 (surface_tension_free_surface.h).
+    Vec<D> present = Vec<D>::Zero();
     const Vec<D> xi = x[i];
     const double rhoi = rho[i], Vi = m[i] / rhoi, Vi2 = Vi * Vi;
     Vec<D> g = Vec<D>::Zero();  // sum over the interfaces of grad c times V_i
@@ -289,6 +323,7 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
       if (r == 0.0) continue;
       const Vec<D> gradW = (*g_dw / r) * (xi - x[j]);
       const double Vj = m[j] / rho[j], s2 = Vi2 + Vj * Vj;
+      if (free) present += s2 * gradW;
       const std::uint16_t mj = mat[j];
       if (mj == mi || sig[mj] == 0.0) continue;
       // (c~_ij - c_i) with c_i = 1, c_j = 0: towards the own phase.
@@ -308,6 +343,7 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
       support += Vw * *g_w;
       if (r == 0.0) continue;
       wall_normal -= (Vw * *g_dw / r) * (xi - x[j]);
+      if (free) present += ((Vi2 + Vw * Vw) * *g_dw / r) * (xi - x[j]);
       if (r < nearest) {
         nearest = r;
         const ContactAngle* own =
@@ -317,12 +353,28 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
     }
     // Own phase's share of the fluid in the kernel support, i itself included (Shepard).
     const double self = Vi * self_weight_;
-    depth_[i] = planar_depth((own_support + self) / (fluid_support + self));
     g /= Vi;
     G /= Vi;
+    double filled = support;  // what the own-support criterion compares with
+    double weight = 1;        // of the normal in the neighbours' curvature (free surfaces)
+    if (!free) {
+      depth_[i] = planar_depth((own_support + self) / (fluid_support + self));
+    } else {
+      // The void fills what the present particles leave empty of the kernel's unit integral.
+      const double void_share = std::max(0.0, 1.0 - (support + self));
+      depth_[i] = planar_depth((own_support + self) / (fluid_support + self + void_share));
+      filled = support + void_share;
+      const double w = free_surface_weight(void_share);
+      // A particle at an interface with another fluid keeps its full weight.
+      if (!(g.norm() > min_gradient_)) weight = w;
+      if (w > 0) {
+        const Vec<D> cv = (w / Vi) * present;  // grad c towards the own phase, void c = 0
+        g += cv;
+        G += sig_void * cv;
+      }
+    }
     const double gn = G.norm();
-    if (!(g.norm() > min_gradient_) || !(gn > 0) || own_support < kMinOwnSupport * support)
-      continue;
+    if (!(g.norm() > min_gradient_) || !(gn > 0) || own_support < kMinOwnSupport * filled) continue;
     Vec<D> n = G / gn;
     if (angle != nullptr) {
       const double wn = wall_normal.norm();
@@ -338,7 +390,7 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
         G = gn * n;
       }
     }
-    normal_[i] = n;
+    normal_[i] = free ? Vec<D>(weight * n) : n;
     gradient_[i] = G;
   }
 }
@@ -353,8 +405,12 @@ void SurfaceTension<D>::curvature_and_force(StepContext<D>& ctx) {
   const std::uint16_t* mat = s.material.data();
   const Vec<D>* normal = normal_.data();
   for (std::size_t i = 0; i < s.owned(); ++i) {
+    if (normal[i].isZero()) continue;  // no interface here (walls and bodies never have one)
+    if (any_free_) {
+      free_surface_curvature(ctx, i);
+      continue;
+    }
     const Vec<D> ni = normal[i];
-    if (ni.isZero()) continue;  // no normal: no interface here (walls and bodies never have one)
     const std::uint16_t mi = mat[i];
     const Vec<D> xi = x[i];
     // N = sum_j V_j (n_j - n_i) (x) grad W_ij and M = sum_j V_j (x_j - x_i) (x) grad W_ij over
@@ -385,6 +441,86 @@ void SurfaceTension<D>::curvature_and_force(StepContext<D>& ctx) {
     // interface's kappa = kappa_level / (1 + kappa_level d).
     const double level = -div, shrink = 1 + level * depth_[i];
     const double kappa = shrink > kMinShrink ? level / shrink : level;
+    curvature_[i] = kappa;
+    s.a[i] += (kappa / rho[i]) * gradient_[i];  // forces accumulate (solver/seam/unit.h)
+  }
+}
+
+// The curvature pass in a case with a free surface (surface_tension_free_surface.h): the
+// normals carry their weight w_j (1 at a fluid-fluid interface) as their length, each
+// neighbour enters N and M with it, and the divergence is the surface divergence
+// tr(A) - n.(A n): the normals of the particles deeper in the band come from smaller, noisier
+// gradients, and the shrinking normal component of their mean would otherwise read as
+// curvature (measured: the outermost row of a free drop at 1.16-1.30 / R).
+template <int D>
+void SurfaceTension<D>::free_surface_curvature(StepContext<D>& ctx, std::size_t i) {
+  ParticleStore<D>& s = ctx.particles;
+  const NeighborList<D>& nl = ctx.neighbors;
+  const Vec<D>* x = s.x.data();
+  const double* rho = s.rho.data();
+  const double* m = s.m.data();
+  const std::uint16_t* mat = s.material.data();
+  const Vec<D>* normal = normal_.data();
+  const Vec<D> ni = normal[i].normalized();
+  const std::uint16_t mi = mat[i];
+  const Vec<D> xi = x[i];
+  Mat<D> N = Mat<D>::Zero(), M = Mat<D>::Zero();
+  const PairValues pv = ctx.pairs.of(nl, i);
+  const double *g_r = pv.r, *g_dw = pv.dw;
+  for (const std::uint32_t* jp = nl.begin(i); jp != nl.fluid_end(i); ++jp, ++g_r, ++g_dw) {
+    const std::uint32_t j = *jp;
+    const Vec<D>& nj = normal[j];
+    const double r = *g_r;
+    if (r == 0.0 || nj.isZero()) continue;
+    const double wj = nj.norm();
+    const Vec<D> xji = x[j] - xi;
+    const Vec<D> VgradW = (-wj * (m[j] / rho[j]) * *g_dw / r) * xji;  // w_j V_j grad W_ij
+    const Vec<D> uj = nj / wj;
+    const Vec<D> nji = mat[j] == mi ? Vec<D>(uj - ni) : Vec<D>(-uj - ni);
+    N.noalias() += nji * VgradW.transpose();
+    M.noalias() += xji * VgradW.transpose();
+  }
+  const double trM = M.trace();
+  if (!(trM > 0)) return;
+  const double det = M.determinant(), iso = std::pow(trM / D, D);
+  double div = 0;
+  if (det > kMinMomentRatio * iso) {
+    const Mat<D> A = N * M.inverse();
+    div = A.trace() - ni.dot(A * ni);
+  } else {
+    div = D * N.trace() / trM;
+  }
+  const double level = -div, shrink = 1 + level * depth_[i];
+  (*raw_curvature_)[i] = shrink > kMinShrink ? level / shrink : level;
+}
+
+// The curvature of the interface at i as the Shepard average of the raw curvatures over i and
+// its neighbours with a normal, each weighted by |G_j| V_j W_ij (surface_tension_free_surface.h:
+// on a free surface the raw curvature carries the particle-scale roughness of the surface);
+// then the force, a_i += kappa_i G_i / rho_i.
+template <int D>
+void SurfaceTension<D>::smoothed_curvature_and_force(StepContext<D>& ctx) {
+  ParticleStore<D>& s = ctx.particles;
+  const NeighborList<D>& nl = ctx.neighbors;
+  const double* rho = s.rho.data();
+  const double* m = s.m.data();
+  const Vec<D>* normal = normal_.data();
+  const double* raw = raw_curvature_->data();
+  const double* gnorm = gradient_norm_->data();
+  for (std::size_t i = 0; i < s.owned(); ++i) {
+    if (normal[i].isZero()) continue;
+    const double self = gnorm[i] * m[i] / rho[i] * self_weight_;
+    double sum = self * raw[i], weight = self;
+    const PairValues pv = ctx.pairs.of(nl, i);
+    const double* g_w = pv.w;
+    for (const std::uint32_t* jp = nl.begin(i); jp != nl.fluid_end(i); ++jp, ++g_w) {
+      const std::uint32_t j = *jp;
+      if (normal[j].isZero()) continue;
+      const double wj = gnorm[j] * m[j] / rho[j] * *g_w;
+      sum += wj * raw[j];
+      weight += wj;
+    }
+    const double kappa = sum / weight;
     curvature_[i] = kappa;
     s.a[i] += (kappa / rho[i]) * gradient_[i];  // forces accumulate (solver/seam/unit.h)
   }

@@ -715,6 +715,39 @@ TEST(RankConsistency, SurfaceTensionResumesFromCheckpointOnAnyRankCount) {
   }
 }
 
+// Surface tension at a free surface (solver/physics/surface_tension_free_surface.h): the void's
+// colour sums over everything present, the weighted normals and the curvatures averaged over
+// the neighbours (a second halo update) must not depend on the rank count or on a resume: a
+// free drop set oscillating and a free square relaxing.
+TEST(RankConsistency, SurfaceTensionFreeSurfaceAcrossRanks) {
+  auto drop = test::load_case("free_drop_oscillation_2d");
+  drop.set_dx(0.1);  // 316 particles
+  check_rank_counts("surface_tension_free_drop", drop, 300);
+  auto square = test::load_case("free_square_droplet_2d");
+  square.set_dx(0.1);  // 256 particles
+  check_rank_counts("surface_tension_free_square", square, 300);
+}
+
+TEST(RankConsistency, SurfaceTensionFreeSurfaceResumesFromCheckpointOnAnyRankCount) {
+  auto c = test::load_case("free_drop_oscillation_2d");
+  c.set_dx(0.1);
+  c.mutable_output()->set_series_interval(1e-12);  // every step: rows after the checkpoint
+  check_resume("surface_tension_free", c, 300, 150);
+  if (world_rank() != 0) return;
+  const std::string dir =
+      std::string(SPHD_BINARY_DIR) + "/test-output/mpi_surface_tension_free_resume_";
+  test::ResultReader rr(dir + "reference/result.h5");
+  const auto count = rr.series("surface_tension/interface_particles");
+  EXPECT_GT(count.back(), 0.0);
+  for (int ranks : {4, 1}) {
+    test::ResultReader rs(dir + "resumed_" + std::to_string(ranks) + "/result.h5");
+    EXPECT_EQ(rs.series("surface_tension/interface_particles"), count) << ranks << " ranks";
+    EXPECT_EQ(rs.series("surface_tension/max_curvature"),
+              rr.series("surface_tension/max_curvature"))
+        << ranks << " ranks";
+  }
+}
+
 // Elastic bodies (solver/elastic/): the reference neighbours are found in the neighbour list
 // of the current positions, the ghosts carry the reference positions and P B, and the
 // energies and observed displacements are exact sums; the fluid-structure coupling adds the

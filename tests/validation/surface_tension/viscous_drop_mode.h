@@ -112,6 +112,26 @@ inline cplx interface_determinant(cplx s, int n, double R, double rho1, double r
   return det4(m);
 }
 
+// A free drop (void outside): the inside columns (A, B) and the two stress conditions at
+// r = R, zero shear stress and p - 2 mu du_r/dr = sigma (n^2 - 1) eta / R^2 with s eta = u_r.
+inline cplx free_surface_determinant(cplx s, int n, double R, double rho, double mu, double sigma) {
+  const cplx k = std::sqrt(s * rho / mu), z = k * R;
+  const cplx di = bessel_i_ratio(n, z) + double(n) / z;
+  const cplx ddi = 1.0 + double(n * n) / (z * z) - di / z;
+  const double Rn = std::pow(R, n), dn = n;
+  const cplx ur[2] = {n * Rn / R, n / R};
+  const cplx dur[2] = {n * (n - 1.0) * Rn / (R * R), dn * k * di / R - dn / (R * R)};
+  const cplx ut[2] = {-n * Rn / R, -k * di};
+  const cplx dut[2] = {-n * (n - 1.0) * Rn / (R * R), -k * k * ddi};
+  const cplx p[2] = {-rho * s * Rn, 0.0};
+  cplx m[2][2];
+  for (int j = 0; j < 2; ++j) {
+    m[0][j] = mu * (dut[j] - ut[j] / R - dn * ur[j] / R);
+    m[1][j] = p[j] - 2.0 * mu * dur[j] - sigma * (n * n - 1.0) / (R * R) * ur[j] / s;
+  }
+  return m[0][0] * m[1][1] - m[0][1] * m[1][0];
+}
+
 }  // namespace viscous_drop_detail
 
 // The mode by the secant method from Lamb's frequency and the small-viscosity estimate.
@@ -126,6 +146,27 @@ inline DropMode viscous_cylinder_drop_mode(int n, double R, double rho_in, doubl
                                                       sigma);
   };
   cplx s0(0, w0), s1 = s0 - cplx(1, 1) * (n / (2 * R)) * std::sqrt(nu * w0 / 2);
+  cplx f0 = f(s0), f1 = f(s1);
+  for (int it = 0; it < 100 && std::abs(s1 - s0) > 1e-14 * w0; ++it) {
+    const cplx s2 = s1 - f1 * (s1 - s0) / (f1 - f0);
+    s0 = s1;
+    f0 = f1;
+    s1 = s2;
+    f1 = f(s1);
+  }
+  return {s1.imag(), -s1.real()};
+}
+
+// The mode of a free 2D drop (void outside) by the secant method from Lamb's omega_0^2 =
+// n (n^2 - 1) sigma / (rho R^3) and the decay rate of the irrotational flow's dissipation,
+// gamma = 2 n (n - 1) nu / R^2 (Lamb 1932 sec. 355, 2D), its small-viscosity limit.
+inline DropMode free_cylinder_drop_mode(int n, double R, double rho, double mu, double sigma) {
+  using viscous_drop_detail::cplx;
+  const double w0 = std::sqrt(n * (n * n - 1.0) * sigma / (rho * R * R * R));
+  auto f = [&](cplx s) {
+    return viscous_drop_detail::free_surface_determinant(s, n, R, rho, mu, sigma);
+  };
+  cplx s0(0, w0), s1(-2.0 * n * (n - 1.0) * mu / (rho * R * R), w0);
   cplx f0 = f(s0), f1 = f(s1);
   for (int it = 0; it < 100 && std::abs(s1 - s0) > 1e-14 * w0; ++it) {
     const cplx s2 = s1 - f1 * (s1 - s0) / (f1 - f0);

@@ -4,6 +4,7 @@
 # u = grad phi + curl(psi e_z); inside phi = A r^n cos n th, psi = B I_n(k1 r)/I_n(k1 R) sin n th,
 # outside phi = C r^-n cos, psi = D K_n(k2 r)/K_n(k2 R) sin; k^2 = s/nu; p = -rho s phi.
 # K_n' from K_n' = -(K_{n-1} + K_{n+1}) / 2: mpmath's besselk takes no derivative argument.
+import sys
 import mpmath as mp
 mp.mp.dps = 40
 def matrix(n, R, rho1, rho2, mu1, mu2, sigma, s):
@@ -28,6 +29,29 @@ def matrix(n, R, rho1, rho2, mu1, mu2, sigma, s):
     return mp.matrix(rows)
 def mode(n, R, rho1, rho2, mu1, mu2, sigma, s0):
     return mp.findroot(lambda s: mp.det(matrix(n, R, rho1, rho2, mu1, mu2, sigma, s)), s0)
+def free_matrix(n, R, rho, mu, sigma, s):
+    # A free drop: the inside columns, zero shear stress and the capillary normal stress.
+    k = mp.sqrt(s*rho/mu)
+    I0 = mp.besseli(n, k*R)
+    Ur = [lambda r: n*r**(n-1), lambda r: n*mp.besseli(n,k*r)/I0/r]
+    Ut = [lambda r: -n*r**(n-1), lambda r: -k*mp.besseli(n,k*r,derivative=1)/I0]
+    P = [-rho*s*R**n, 0]
+    rows = [[0]*2 for _ in range(2)]
+    for j in range(2):
+        rows[0][j] = mu*(mp.diff(Ut[j], R) - Ut[j](R)/R - n*Ur[j](R)/R)
+        rows[1][j] = P[j] - 2*mu*mp.diff(Ur[j], R) - sigma*(n*n-1)/R**2*Ur[j](R)/s
+    return mp.matrix(rows)
+def free_mode(n, R, rho, mu, sigma, s0):
+    return mp.findroot(lambda s: mp.det(free_matrix(n, R, rho, mu, sigma, s)), s0)
+if __name__ == "__main__" and len(sys.argv) > 1 and sys.argv[1] == "free":
+    # usage: python3 viscous_drop_mode.py free N R MU...: a free drop (void outside), rho = sigma = 1
+    n, R = int(sys.argv[2]), float(sys.argv[3])
+    w0 = mp.sqrt(n*(n*n-1)/R**3)
+    for mu in [float(a) for a in sys.argv[4:]]:
+        s = free_mode(n, R, 1, mu, 1, mp.mpc(-2*n*(n-1)*mu/R**2, w0))
+        print(f"free n {n} R {R} mu {mu}: omega {float(mp.im(s)):.11f} gamma {float(-mp.re(s)):.11f} "
+              f"(Lamb omega_0 {float(w0):.6f}, irrotational gamma {2*n*(n-1)*mu/R**2:.6f})")
+    sys.exit(0)
 if __name__ == "__main__":
     import sys
     n, R, sigma = 2, 1.0, 1.0
