@@ -819,6 +819,65 @@ TEST(SurfaceTension, FreeSquareRelaxesToACircle) {
   EXPECT_LT(std::abs(mean - (r_eq - dx / 2)), dx);
 }
 
+TEST(SurfaceTension, FreeDrop3DLaplacePressure) {
+  // A sphere of R = 1 at R/dx = 8 in void, started in the Laplace state (background pressure
+  // 2 sigma / R), mu = 0.2: the pressure inside against 2 sigma / R.
+  const double dx = 0.125, mu = 0.2, end = 2;
+  const v1::Case c = parse_case_text(
+      "name: \"free_drop_3d\"\n"
+      "dimension: 3\n"
+      "dx: " +
+      num(dx) +
+      "\ndomain { lo { x: -2 y: -2 z: -2 } hi { x: 2 y: 2 z: 2 } }\n"
+      "materials { name: \"drop\" density: 1 eos { kind: LINEAR sound_speed: 10 "
+      "background_pressure: 2 } dynamic_viscosity: " +
+      num(mu) +
+      " }\n"
+      "fluids { name: \"drop\" material: \"drop\" shape { ball { radius: 1 } } }\n"
+      "surface_tension { pairs { material_a: \"drop\" sigma: 1 } }\n"
+      "fluid_model { density: CONTINUITY }\n"
+      "time { end_time: " +
+      num(end) +
+      " }\n"
+      "output { interval: 0.1 series_interval: 0.01 }\n");
+  const std::string out = test::output_dir("surface_tension_free_drop_3d");
+  const RunOutcome r = test::run(c, out);
+  ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+  test::ResultReader rr(out + "/result.h5");
+  const test::Snapshot s0 = rr.snapshot(0);
+  std::size_t n0 = 0;
+  for (std::size_t i = 0; i < s0.size(); ++i) n0 += s0.kind[i] == 0;
+  const double Rn = std::cbrt(3.0 * static_cast<double>(n0) * dx * dx * dx / (4 * kPi));
+  double inside = 0;
+  int n = 0;
+  for (int k = 0; k < rr.snapshot_count(); ++k) {
+    const test::Snapshot sn = rr.snapshot(k);
+    if (sn.time < 1.0) continue;
+    double sum = 0;
+    int count = 0;
+    for (std::size_t i = 0; i < sn.size(); ++i) {
+      const double rad = std::sqrt(sn.position[3 * i] * sn.position[3 * i] +
+                                   sn.position[3 * i + 1] * sn.position[3 * i + 1] +
+                                   sn.position[3 * i + 2] * sn.position[3 * i + 2]);
+      if (sn.kind[i] == 0 && rad < Rn - 3 * dx) {
+        sum += sn.pressure[i];
+        ++count;
+      }
+    }
+    inside += sum / count;
+    ++n;
+  }
+  inside /= n;
+  const double exact = 2.0 / Rn, error = std::abs(inside / exact - 1);
+  const double spurious = largest_speed(rr, 1.0);
+  std::printf(
+      "Free 3D drop at rest, R/dx = 8 (R = %.4f from the particle volume), %zu particles, %lld "
+      "steps: p_in = %.5f vs 2 sigma/R = %.5f, error %.2f%% (tolerance 5%%); largest speed for "
+      "t >= 1: %.3g = %.3g sigma/mu\n",
+      Rn, n0, static_cast<long long>(r.steps), inside, exact, 100 * error, spurious, spurious * mu);
+  EXPECT_LT(error, 0.05);
+}
+
 // A free drop of radius 1 set oscillating in mode 2 by u = A (x, -y): the period and decay
 // rate of its anisotropy against the free drop's viscous normal mode (viscous_drop_mode.h;
 // Lamb's omega_0^2 = n (n^2 - 1) sigma / (rho R^3) printed too).
