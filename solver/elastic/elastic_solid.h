@@ -28,6 +28,22 @@
 // kick-drift-kick form; F is not integrated but recomputed from the positions every step
 // (eq. 3.10), so it needs no state of its own.
 //
+// Sub-steps (TimeControl.subcycle_elastic_bodies; thesis sec. 6.1, P-I eqs. 33-38): the fluid's
+// kicks and drift leave elastic particles alone, and the unit advances them itself, on their
+// own velocity (column "elastic_velocity"), as an impulse multiple-time-step method (r-RESPA,
+// Tuckerman, Berne & Martyna 1992): the fluid's force is the slow force, kicked at the ends of
+// the fluid's step, the internal forces and gravity the fast ones, sub-stepped in between:
+//   kAfterDrift  v += dt/2 f^n / m (the fluid's force of t^n, held in
+//                "elastic_held_fluid_force"), then kappa = ceil(dt / dt_s) kick-drift-kick
+//                sub-steps of dt / kappa from t^n to t^{n+1} (P-I eqs. 36-38), each with the
+//                internal forces at its positions (ghosts refreshed); the fluid is then shown
+//                that velocity and its change over the step as the particle's v and a;
+//   kForces      v += dt/2 f^{n+1} / m with the fluid's force at t^{n+1}, which is held.
+// dt_s is eq. 33 at the end of the previous sub-steps, the same on every rank. The thesis holds
+// the fluid's force over the sub-steps and shows the fluid the solid's velocity averaged over
+// its step (P-I eq. 34); both went unstable for a stiff plate under water
+// (docs/elastic_solids.md).
+//
 // Time step (thesis eq. 33, P-I sec. 3.4):
 //   dt <= cfl_factor 0.6 min(sqrt(h / |a|max), h / (|v|max + c_s)),
 // with c_s = sqrt(K / rho0) the largest of the bodies' materials and the maxima over the free
@@ -77,15 +93,22 @@ class ElasticSolid final : public Unit<D> {
   static constexpr double kMinConditioning = 1e-3;
   // Thesis eq. 33.
   static constexpr double kTimeStepFactor = 0.6;
+  // Sub-steps in one fluid step above which the run stops (a solid blowing up).
+  static constexpr int kMaxSubsteps = 10000;
 
   explicit ElasticSolid(const UnitBuildContext<D>& b);
 
   const char* name() const override { return kName; }
   PhaseMask phases() const override {
-    return constrained_ ? kConstrainedPhases : phase_bit(StepPhase::kForces);
+    return constrained_ || solid_v_ ? kConstrainedPhases : phase_bit(StepPhase::kForces);
   }
   void run(StepPhase phase, StepContext<D>& ctx) override;
-  double max_time_step() const override { return max_dt_; }
+  // Sub-stepped bodies set no bound on the fluid's step.
+  double max_time_step() const override {
+    return solid_v_ ? std::numeric_limits<double>::infinity() : max_dt_;
+  }
+  void save(CheckpointState& state) const override;
+  void load(const CheckpointState& state) override;
   std::size_t scratch_bytes() const override {
     return refs_.bytes() + poses_.capacity() * sizeof(MotionPath::Pose) +
            slots_.capacity() * sizeof(std::pair<ParticleId, std::size_t>);
@@ -110,8 +133,22 @@ class ElasticSolid final : public Unit<D> {
   };
 
   void forces(StepContext<D>& ctx);
+  // F, dF/dt (from v), P, P B and the output fields of every owned elastic particle, and what
+  // the internal forces read of them to the ghosts.
+  void stresses(StepContext<D>& ctx, const Vec<D>* v);
+  // The internal force on owned particle i (eqs. 3.8-3.9 and the hourglass control), after
+  // stresses().
+  Vec<D> internal_force_on(const ParticleStore<D>& s, std::size_t i) const;
+  // Sub-steps: F, P B and the output fields of the owned particles at their positions now (v:
+  // the velocities dF/dt reads), P B to the ghosts, then the internal forces.
+  void internal_forces(StepContext<D>& ctx, const Vec<D>* v);
+  void hold_fluid_force(StepContext<D>& ctx);
+  void substeps(StepContext<D>& ctx);
+  Vec<D> substep_acceleration(const ParticleStore<D>& s, std::size_t i, const Vec<D>& g) const;
+  void substep_bound(const ParticleStore<D>& s, const Comm& comm, double t);
+  void place_constrained(ParticleStore<D>& s, Column<Vec<D>>& v, double t);
   void hold_constrained(ParticleStore<D>& s);
-  void move_constrained(ParticleStore<D>& s, double t);
+  void move_constrained(ParticleStore<D>& s, double t) { place_constrained(s, s.v, t); }
   void find_observed(const ParticleStore<D>& s, const Comm& comm);
   void fail(const ParticleStore<D>& s, std::size_t i, const StepContext<D>& ctx, const char* what);
 
@@ -143,10 +180,18 @@ class ElasticSolid final : public Unit<D> {
   Column<std::int32_t>& constraint_;  // constraint of the body holding it, -1 free
   Column<Vec<D>>& fluid_force_;       // the fluid's force on the particle [N] (scratch)
   Column<Mat<D>>& pb_;                // P B (scratch, ghosted by halo.update)
-  Column<Mat<D>>& F_;                 // deformation gradient of the last step (scratch)
-  Column<double>* displacement_[D];   // x - X per axis (scratch, output)
-  Column<double>& von_mises_;         // (scratch, output)
-  Column<double>& strain_;            // (scratch, output)
+  // Sub-steps only (null otherwise, all persistent): the solid's own velocity (ghosted), the
+  // held fluid force, the internal force of the last sub-step, the acceleration shown to the
+  // fluid.
+  Column<Vec<D>>* solid_v_ = nullptr;
+  Column<Vec<D>>* held_force_ = nullptr;
+  Column<Vec<D>>* internal_ = nullptr;
+  Column<Vec<D>>* shown_a_ = nullptr;
+  double substep_dt_ = std::numeric_limits<double>::infinity();  // eq. 33 at the last sub-step
+  Column<Mat<D>>& F_;                // deformation gradient of the last step (scratch)
+  Column<double>* displacement_[D];  // x - X per axis (scratch, output)
+  Column<double>& von_mises_;        // (scratch, output)
+  Column<double>& strain_;           // (scratch, output)
 };
 
 template <int D>
@@ -192,6 +237,13 @@ ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
   for (std::size_t k = 0; k < b.materials.size(); ++k)
     if (b.materials[k].rho0 > 0) inv_rho0_[k] = 1.0 / b.materials[k].rho0;
   const v1::Case& c = b.c;
+  if (c.time().subcycle_elastic_bodies()) {
+    solid_v_ = &b.particles.template add<Vec<D>>("elastic_velocity", kName, true);
+    held_force_ = &b.particles.template add<Vec<D>>("elastic_held_fluid_force", kName, true);
+    internal_ = &b.particles.template add<Vec<D>>("elastic_internal_force", kName, true);
+    shown_a_ = &b.particles.template add<Vec<D>>("elastic_shown_acceleration", kName, true);
+    for (Column<Vec<D>>* col : {held_force_, internal_, shown_a_}) col->set_ghost(false);
+  }
   if (c.has_gravity()) {
     gravity_ = elastic_vec<D>(c.gravity().acceleration());
     gravity_ramp_ = c.gravity().damping_time();
@@ -233,6 +285,10 @@ ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
 template <int D, class K>
 void ElasticSolid<D, K>::initialize(std::size_t i, const SceneParticle& p) {
   F_[i] = Mat<D>::Identity();
+  if (solid_v_) {
+    for (int a = 0; a < D; ++a) (*solid_v_)[i][a] = p.kind == Kind::kElastic ? p.v[a] : 0.0;
+    (*held_force_)[i] = (*internal_)[i] = (*shown_a_)[i] = Vec<D>::Zero();
+  }
   if (p.kind != Kind::kElastic) {
     constraint_[i] = -1;
     return;
@@ -246,13 +302,19 @@ template <int D, class K>
 void ElasticSolid<D, K>::run(StepPhase phase, StepContext<D>& ctx) {
   switch (phase) {
     case StepPhase::kForces:
-      forces(ctx);
+      if (solid_v_)
+        hold_fluid_force(ctx);
+      else
+        forces(ctx);
       break;
     case StepPhase::kConstraints:
       hold_constrained(ctx.particles);
       break;
     case StepPhase::kAfterDrift:
-      move_constrained(ctx.particles, ctx.t);
+      if (solid_v_ && ctx.dt > 0)
+        substeps(ctx);
+      else
+        move_constrained(ctx.particles, ctx.t);
       break;
     default:
       break;
@@ -272,13 +334,41 @@ void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
   ParticleStore<D>& s = ctx.particles;
   const std::size_t n = s.owned();
   const Kind* kind = s.kind.data();
+  const Vec<D>* v = s.v.data();
+  failure_.clear();
+  refs_.build(s, ctx.neighbors, X_.data(), body_.data(), inv_rho0_.data(), kernel_);
+  stresses(ctx, v);
+  // Pass 2: the momentum equation, the fluid's force and gravity.
+  const Vec<D> g = BodyForce<D>::damping_factor(ctx.t, gravity_ramp_) * gravity_;
+  double a_max = 0, v_max = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kind[i] != Kind::kElastic) continue;
+    const double m = s.m[i];
+    Vec<D> acc = (internal_force_on(s, i) + fluid_force_[i]) / m;
+    if (bodies_[body_[i]].gravity) acc += g;
+    s.a[i] += acc;  // forces accumulate (solver/seam/unit.h)
+    v_max = std::max(v_max, v[i].norm());
+    if (constraint_[i] < 0) a_max = std::max(a_max, s.a[i].norm());
+  }
+  // Thesis eq. 33 with the maxima of all ranks (exact, so the same on any rank count).
+  maxima_[0] = a_max;
+  maxima_[1] = v_max;
+  ctx.comm.max_inplace(maxima_);
+  max_dt_ = h_ / (maxima_[1] + sound_speed_);
+  if (maxima_[0] > 0) max_dt_ = std::min(max_dt_, std::sqrt(h_ / maxima_[0]));
+  max_dt_ *= cfl_ * kTimeStepFactor;
+  max_dt_ = std::min(max_dt_, cfl_ * damping_dt_);
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::stresses(StepContext<D>& ctx, const Vec<D>* v) {
+  ParticleStore<D>& s = ctx.particles;
+  const std::size_t n = s.owned();
+  const Kind* kind = s.kind.data();
   const std::uint16_t* mat = s.material.data();
   const Vec<D>* X = X_.data();
   const Vec<D>* x = s.x.data();
-  const Vec<D>* v = s.v.data();
-  failure_.clear();
-  refs_.build(s, ctx.neighbors, X, body_.data(), inv_rho0_.data(), kernel_);
-  // Pass 1: F, dF/dt, P and P B of every owned elastic particle (eqs. 3.7, 3.10, P-I 35).
+  // F, dF/dt, P and P B of every owned elastic particle (eqs. 3.7, 3.10, P-I 35).
   for (std::size_t i = 0; i < n; ++i) {
     if (kind[i] != Kind::kElastic) {
       pb_[i] = Mat<D>::Zero();
@@ -327,31 +417,6 @@ void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
     ctx.halo.update(s, {&pb_, &F_});
   else
     ctx.halo.update(s, {&pb_});
-  // Pass 2: the momentum equation (eqs. 3.8-3.9), the fluid's force and gravity.
-  const Vec<D> g = BodyForce<D>::damping_factor(ctx.t, gravity_ramp_) * gravity_;
-  const Mat<D>* pb = pb_.data();
-  double a_max = 0, v_max = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (kind[i] != Kind::kElastic) continue;
-    const double m = s.m[i];
-    const double V0 = m * inv_rho0_[mat[i]];
-    Vec<D> f = internal_force<D>(refs_, i, pb, V0) + fluid_force_[i];
-    if (hourglass_.active())
-      f += hourglass_.force(refs_, i, X, x, F_.data(), s.m.data(), mat, inv_rho0_.data(), kernel_);
-    Vec<D> acc = f / m;
-    if (bodies_[body_[i]].gravity) acc += g;
-    s.a[i] += acc;  // forces accumulate (solver/seam/unit.h)
-    v_max = std::max(v_max, v[i].norm());
-    if (constraint_[i] < 0) a_max = std::max(a_max, s.a[i].norm());
-  }
-  // Thesis eq. 33 with the maxima of all ranks (exact, so the same on any rank count).
-  maxima_[0] = a_max;
-  maxima_[1] = v_max;
-  ctx.comm.max_inplace(maxima_);
-  max_dt_ = h_ / (maxima_[1] + sound_speed_);
-  if (maxima_[0] > 0) max_dt_ = std::min(max_dt_, std::sqrt(h_ / maxima_[0]));
-  max_dt_ *= cfl_ * kTimeStepFactor;
-  max_dt_ = std::min(max_dt_, cfl_ * damping_dt_);
 }
 
 template <int D, class K>
@@ -361,7 +426,7 @@ void ElasticSolid<D, K>::hold_constrained(ParticleStore<D>& s) {
 }
 
 template <int D, class K>
-void ElasticSolid<D, K>::move_constrained(ParticleStore<D>& s, double t) {
+void ElasticSolid<D, K>::place_constrained(ParticleStore<D>& s, Column<Vec<D>>& vel, double t) {
   // One pose per constraint and step, as WallMotion does.
   poses_.resize(paths_.size());
   for (std::size_t k = 0; k < paths_.size(); ++k)
@@ -372,7 +437,7 @@ void ElasticSolid<D, K>::move_constrained(ParticleStore<D>& s, double t) {
         bodies_[body_[i]].first_constraint + static_cast<std::size_t>(constraint_[i]);
     if (paths_[k].is_static()) {
       s.x[i] = X_[i];
-      s.v[i] = Vec<D>::Zero();
+      vel[i] = Vec<D>::Zero();
       continue;
     }
     Point3 X0 = Point3::Zero();
@@ -380,7 +445,7 @@ void ElasticSolid<D, K>::move_constrained(ParticleStore<D>& s, double t) {
     const Point3 xt = poses_[k].position(X0), vt = poses_[k].velocity(X0);
     for (int a = 0; a < D; ++a) {
       s.x[i][a] = xt[a];
-      s.v[i][a] = vt[a];
+      vel[i][a] = vt[a];
     }
   }
 }
@@ -445,7 +510,8 @@ void ElasticSolid<D, K>::sample(ResultFile& result, const StepContext<D>& ctx) {
           if (s.kind[i] != Kind::kElastic) continue;
           const std::uint16_t k = body_[i];
           const double m = s.m[i];
-          emit(2 * k, 0.5 * m * s.v[i].squaredNorm());
+          const Vec<D>& v = solid_v_ ? (*solid_v_)[i] : s.v[i];
+          emit(2 * k, 0.5 * m * v.squaredNorm());
           emit(2 * k + 1, m * inv_rho0_[s.material[i]] *
                               strain_energy_density<D>(laws_[s.material[i]], F_[i]));
         }
@@ -464,6 +530,143 @@ void ElasticSolid<D, K>::sample(ResultFile& result, const StepContext<D>& ctx) {
     result.put(base + "kinetic_energy", energy[2 * k]);
     result.put(base + "strain_energy", energy[2 * k + 1]);
   }
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::save(CheckpointState& state) const {
+  if (solid_v_) state["elastic_solid.substep_dt"] = substep_dt_;
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::load(const CheckpointState& state) {
+  if (solid_v_) substep_dt_ = state_value(state, "elastic_solid.substep_dt");
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::internal_forces(StepContext<D>& ctx, const Vec<D>* v) {
+  ParticleStore<D>& s = ctx.particles;
+  stresses(ctx, v);
+  for (std::size_t i = 0; i < s.owned(); ++i)
+    if (s.kind[i] == Kind::kElastic) (*internal_)[i] = internal_force_on(s, i);
+}
+
+template <int D, class K>
+Vec<D> ElasticSolid<D, K>::internal_force_on(const ParticleStore<D>& s, std::size_t i) const {
+  const std::uint16_t* mat = s.material.data();
+  const double V0 = s.m[i] * inv_rho0_[mat[i]];
+  Vec<D> f = internal_force<D>(refs_, i, pb_.data(), V0);  // eqs. 3.8-3.9
+  if (hourglass_.active())
+    f += hourglass_.force(refs_, i, X_.data(), s.x.data(), F_.data(), s.m.data(), mat,
+                          inv_rho0_.data(), kernel_);
+  return f;
+}
+
+template <int D, class K>
+Vec<D> ElasticSolid<D, K>::substep_acceleration(const ParticleStore<D>& s, std::size_t i,
+                                                const Vec<D>& g) const {
+  Vec<D> acc = (*internal_)[i] / s.m[i];
+  if (bodies_[body_[i]].gravity) acc += g;
+  return acc;
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::hold_fluid_force(StepContext<D>& ctx) {
+  ParticleStore<D>& s = ctx.particles;
+  const std::size_t n = s.owned();
+  // The closing half kick of the fluid's force of t^{n+1} (the outer kick of r-RESPA).
+  Column<Vec<D>>& vs = *solid_v_;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (s.kind[i] != Kind::kElastic) continue;
+    (*held_force_)[i] = fluid_force_[i];
+    if (constraint_[i] < 0) vs[i] += (0.5 * ctx.dt / s.m[i]) * fluid_force_[i];
+  }
+  if (ctx.dt == 0) {
+    // The run is primed: the internal forces the first sub-step starts from, and its bound.
+    failure_.clear();
+    refs_.build(s, ctx.neighbors, X_.data(), body_.data(), inv_rho0_.data(), kernel_);
+    internal_forces(ctx, solid_v_->data());
+    substep_bound(s, ctx.comm, ctx.t);
+  }
+  // The acceleration the fluid sees until the next sub-steps (the wall condition reads a).
+  for (std::size_t i = 0; i < n; ++i)
+    if (s.kind[i] == Kind::kElastic) s.a[i] += (*shown_a_)[i];
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::substeps(StepContext<D>& ctx) {
+  ParticleStore<D>& s = ctx.particles;
+  const std::size_t n = s.owned();
+  const Kind* kind = s.kind.data();
+  Column<Vec<D>>& vs = *solid_v_;
+  failure_.clear();
+  const double dt = ctx.dt, t0 = ctx.t - dt;
+  const double ratio = dt / substep_dt_;
+  if (!(ratio <= kMaxSubsteps)) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "elastic bodies need %.3g sub-steps of %.3e in a fluid step of %.3e (more "
+                  "than %d) at step %lld, t = %.9g",
+                  ratio, substep_dt_, dt, kMaxSubsteps, static_cast<long long>(ctx.step), ctx.t);
+    failure_ = buf;
+    return;
+  }
+  const int kappa = std::max(1, static_cast<int>(std::ceil(ratio)));
+  const double ds = dt / kappa;
+  refs_.build(s, ctx.neighbors, X_.data(), body_.data(), inv_rho0_.data(), kernel_);
+  // The opening half kick of the fluid's force of t^n, then kick-drift-kick sub-steps (P-I
+  // eqs. 36-38) of the internal forces and gravity.
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kind[i] != Kind::kElastic) continue;
+    if (constraint_[i] < 0) vs[i] += (0.5 * dt / s.m[i]) * (*held_force_)[i];
+  }
+  for (int k = 0; k < kappa; ++k) {
+    const double ta = t0 + k * ds, tb = k + 1 == kappa ? ctx.t : t0 + (k + 1) * ds;
+    const Vec<D> ga = BodyForce<D>::damping_factor(ta, gravity_ramp_) * gravity_;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (kind[i] != Kind::kElastic || constraint_[i] >= 0) continue;
+      vs[i] += 0.5 * ds * substep_acceleration(s, i, ga);
+      s.x[i] += ds * vs[i];
+    }
+    place_constrained(s, vs, tb);
+    ctx.halo.update(s, {&s.x, &vs});
+    internal_forces(ctx, vs.data());
+    const Vec<D> gb = BodyForce<D>::damping_factor(tb, gravity_ramp_) * gravity_;
+    for (std::size_t i = 0; i < n; ++i)
+      if (kind[i] == Kind::kElastic && constraint_[i] < 0)
+        vs[i] += 0.5 * ds * substep_acceleration(s, i, gb);
+  }
+  // What the fluid sees until the next sub-steps: the solid's velocity now, before the closing
+  // half kick of the fluid's force (the fluid's own velocities are likewise half-kicked when its
+  // forces are evaluated), and its change over the step as the acceleration. Not the thesis'
+  // velocity averaged over the step (P-I eq. 34): with it a stiff plate under water went
+  // unstable (docs/elastic_solids.md).
+  const double inv_dt = 1.0 / dt;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kind[i] != Kind::kElastic) continue;
+    (*shown_a_)[i] = (vs[i] - s.v[i]) * inv_dt;
+    s.v[i] = vs[i];
+    s.a[i] = (*shown_a_)[i];
+  }
+  substep_bound(s, ctx.comm, ctx.t);
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::substep_bound(const ParticleStore<D>& s, const Comm& comm, double t) {
+  const Vec<D> g = BodyForce<D>::damping_factor(t, gravity_ramp_) * gravity_;
+  double a_max = 0, v_max = 0;
+  for (std::size_t i = 0; i < s.owned(); ++i) {
+    if (s.kind[i] != Kind::kElastic) continue;
+    v_max = std::max(v_max, (*solid_v_)[i].norm());
+    if (constraint_[i] < 0)
+      a_max = std::max(a_max, (substep_acceleration(s, i, g) + (*held_force_)[i] / s.m[i]).norm());
+  }
+  // Thesis eq. 33, as max_dt_ in forces().
+  maxima_[0] = a_max;
+  maxima_[1] = v_max;
+  comm.max_inplace(maxima_);
+  double dt = h_ / (maxima_[1] + sound_speed_);
+  if (maxima_[0] > 0) dt = std::min(dt, std::sqrt(h_ / maxima_[0]));
+  substep_dt_ = std::min(cfl_ * kTimeStepFactor * dt, cfl_ * damping_dt_);
 }
 
 }  // namespace sph

@@ -10,10 +10,13 @@
 
 namespace sph {
 
+// elastic = false leaves elastic particles to the elastic solid's own sub-steps
+// (TimeControl.subcycle_elastic_bodies, solver/elastic/elastic_solid.h).
 template <int D>
-void kick(ParticleStore<D>& s, double half_dt) {
+void kick(ParticleStore<D>& s, double half_dt, bool elastic = true) {
   for (std::size_t i = 0; i < s.owned(); ++i)
-    if (s.kind[i] == Kind::kFluid || s.kind[i] == Kind::kElastic) s.v[i] += half_dt * s.a[i];
+    if (s.kind[i] == Kind::kFluid || (elastic && s.kind[i] == Kind::kElastic))
+      s.v[i] += half_dt * s.a[i];
 }
 
 template <int D>
@@ -24,11 +27,11 @@ void set_transport_velocity(ParticleStore<D>& s, Column<Vec<D>>& transport,
 }
 
 template <int D>
-void drift(ParticleStore<D>& s, const Column<Vec<D>>& advect, double dt) {
+void drift(ParticleStore<D>& s, const Column<Vec<D>>& advect, double dt, bool elastic = true) {
   for (std::size_t i = 0; i < s.owned(); ++i)
     if (s.kind[i] == Kind::kFluid)
       s.x[i] += dt * advect[i];
-    else if (s.kind[i] == Kind::kElastic)
+    else if (elastic && s.kind[i] == Kind::kElastic)
       s.x[i] += dt * s.v[i];
 }
 

@@ -234,7 +234,7 @@ void Halo<D>::build_ghosts(ParticleStore<D>& s) {
 template <int D>
 void Halo<D>::update(ParticleStore<D>& s, std::initializer_list<ColumnBase*> list) {
   std::vector<ColumnBase*> cols(list);
-  pack(s, cols, false);
+  pack(s, cols, true);  // positions, if listed, shifted for periodic images as when built
   exchange();
   unpack(cols, s.owned());
 }

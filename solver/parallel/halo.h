@@ -36,7 +36,8 @@ class Halo {
   // Appends ghost copies of the owned particles that neighbouring subdomains need (periodic
   // images shifted by the domain length) with all `ghost` columns.
   void build_ghosts(ParticleStore<D>& s);
-  // Refreshes the listed columns of the ghosts made by the last build_ghosts().
+  // Refreshes the listed columns of the ghosts made by the last build_ghosts() (positions
+  // shifted as then).
   void update(ParticleStore<D>& s, std::initializer_list<ColumnBase*> cols);
   // Sends all `ghost` columns again to the ghosts of the last build_ghosts() (positions shifted
   // as then): the same ghosts, in the same rows, with the owners' state now. Between two

@@ -199,6 +199,9 @@ class Simulation {
   // scalar_transport.h), which phase transitions and open boundaries read and set.
   Column<double>* temperature_ = nullptr;
   Column<Vec<D>>* elastic_force_ = nullptr;  // fluid force on elastic particles (coupling)
+  // Elastic particles move in the elastic solid's own sub-steps, not in the fluid's kicks
+  // and drift (TimeControl.subcycle_elastic_bodies).
+  bool subcycled_elastic_ = false;
   Column<double>* concentration_ = nullptr;
   Column<std::uint16_t>* wall_index_ = nullptr;
   std::optional<SpringDashpotContact<D>> contact_;

@@ -311,9 +311,9 @@ std::string Simulation<D, K>::integrate_step(double dt) {
   step_dt_ = dt;
   {
     Timer tm(timer("integrate"));
-    kick(s_, 0.5 * dt);
+    kick(s_, 0.5 * dt, !subcycled_elastic_);
     if (transport_) set_transport_velocity(s_, *transport_, *background_, 0.5 * dt);
-    drift(s_, transport_ ? *transport_ : s_.v, dt);
+    drift(s_, transport_ ? *transport_ : s_.v, dt, !subcycled_elastic_);
   }
   if (bodies_) {
     bodies_->kick(0.5 * dt, t_);  // Fuchs 2021 eq. 31
@@ -351,7 +351,7 @@ std::string Simulation<D, K>::integrate_step(double dt) {
   run_phase(StepPhase::kConstraints);
   {
     Timer tm(timer("integrate"));
-    kick(s_, 0.5 * dt);
+    kick(s_, 0.5 * dt, !subcycled_elastic_);
     if (bodies_) {
       bodies_->kick(0.5 * dt, t_);  // eq. 39
       bodies_->update_accelerations(t_);

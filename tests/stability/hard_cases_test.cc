@@ -267,8 +267,9 @@ ObservedDisplacement observed_displacement(const std::string& label, const std::
 TEST(Stability, VeryStiffPlateUnderWater) {
   // cases/plate_under_water_2d with the plate 100 times stiffer (E = 3e8 Pa): E / rho_s =
   // 6e4 m^2/s^2, 150 times c^2 of the water (c = 20 m/s); the solid's sound speed
-  // sqrt(K / rho_s) = 141 m/s sets a step 7 times shorter than the fluid's (the solid is
-  // sub-cycled, thesis sec. 6.1). At rest the middle sinks by Timoshenko's value, 100 times
+  // sqrt(K / rho_s) = 141 m/s sets a step 7 times shorter than the fluid's, which both take
+  // here (ElasticSolid.SubcycledStiffPlateUnderWaterMatchesItsOwnWeight sub-cycles the solid,
+  // thesis sec. 6.1). At rest the middle sinks by Timoshenko's value, 100 times
   // less than the soft plate's, plus the plate's own discretisation error at 8 particles
   // through its thickness (+21% for the soft plate, docs/elastic_solids.md). CI: t = 0.3 (the
   // water's weight ramped up by 0.2 and the plate at rest); full: the case's t = 0.8.

@@ -161,5 +161,42 @@ TEST(ElasticSolid, HydrostaticLoadBendsAClampedPlate) {
   EXPECT_LT(std::abs(-w_dry / w_beam - 1), 0.30);
 }
 
+TEST(ElasticSolid, SubcycledStiffPlateUnderWaterMatchesItsOwnWeight) {
+  // The plate of cases/plate_under_water_2d made 100 times stiffer (E = 3e8 Pa, c_s = 141 m/s
+  // against the water's 20 m/s), sub-cycled inside the fluid's step (TimeControl.
+  // subcycle_elastic_bodies, thesis sec. 6.1): about three sub-steps per fluid step. Its mean
+  // deflection once the load is ramped up (0.25 <= t <= 0.3) against the same plate under its
+  // own equal weight without water, where the solid sets the only step: they differ by the
+  // coupling's error and the sub-steps'.
+  v1::Case fsi = test::load_case("plate_under_water_2d");
+  fsi.mutable_materials(1)->set_youngs_modulus(3e8);
+  fsi.mutable_time()->set_end_time(0.3);
+  fsi.mutable_time()->set_subcycle_elastic_bodies(true);
+  const std::string out = test::output_dir("elastic_stiff_plate_subcycled");
+  const RunOutcome r = test::run(fsi, out);
+  ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+  const double w_fsi =
+      late_mean(test::ResultReader(out + "/result.h5"), "elastic/plate/displacement", 1, 0.25);
+  v1::Case dry = fsi;
+  dry.clear_fluids();
+  dry.clear_walls();
+  dry.mutable_time()->set_subcycle_elastic_bodies(false);
+  dry.mutable_elastic_bodies(0)->set_ignore_gravity(false);
+  const std::string out_dry = test::output_dir("elastic_stiff_plate_own_weight");
+  const RunOutcome rd = test::run(dry, out_dry);
+  ASSERT_EQ(rd.status, RunStatus::kCompleted) << rd.message;
+  const double w_dry =
+      late_mean(test::ResultReader(out_dry + "/result.h5"), "elastic/plate/displacement", 1, 0.25);
+  const double coupling = w_fsi / w_dry - 1;
+  std::printf(
+      "Stiff plate under water, sub-cycled: %lld fluid steps, mean deflection %.5g m; under its "
+      "own equal weight, %lld solid steps: %.5g m; difference %+.2f%% (< 5%%)\n",
+      static_cast<long long>(r.steps), -w_fsi, static_cast<long long>(rd.steps), -w_dry,
+      100 * coupling);
+  EXPECT_LT(std::abs(coupling), 0.05);
+  // The fluid took steps of its own: at least twice as long as the solid's.
+  EXPECT_LT(2 * r.steps, rd.steps);
+}
+
 }  // namespace
 }  // namespace sph
