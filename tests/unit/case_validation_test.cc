@@ -487,9 +487,16 @@ TEST(CaseValidation, SurfaceTensionPairs) {
   auto errs = errors_of(m + R"(surface_tension {
     pairs { material_a: "water" material_b: "oil" sigma: 0.03 } })");
   EXPECT_TRUE(errs.empty()) << dump(errs);
+  // No material_b: water against void, which needs the continuity density.
   errs = errors_of(m + R"(surface_tension { pairs { material_a: "water" sigma: 0.072 } })");
-  EXPECT_TRUE(has_error(errs, "surface_tension.pairs[0].material_b",
-                        "is required: free surfaces (a fluid against void) are not supported yet"))
+  EXPECT_TRUE(has_error(errs, "fluid_model.density", "CONTINUITY")) << dump(errs);
+  errs = errors_of(
+      m +
+      R"(fluid_model { density: CONTINUITY } surface_tension { pairs { material_a: "water" sigma: 0.072 } })");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  errs = errors_of(m + R"(fluid_model { density: CONTINUITY } surface_tension {
+    pairs { material_a: "water" sigma: 0.072 } pairs { material_a: "water" sigma: 0.05 } })");
+  EXPECT_TRUE(has_error(errs, "surface_tension.pairs[1].material_a", "duplicate free surface"))
       << dump(errs);
   errs = errors_of(
       m + R"(surface_tension { pairs { material_a: "water" material_b: "oil" sigma: -1 } })");
