@@ -73,7 +73,8 @@ surface_tension { pairs { material_a: "fluid" material_b: "drop" sigma: 0.04 } }
   // E = 8 kPa gives c_s = 2.2 m/s, so its own step bound (thesis eq. 33) is about the fluid's.
   if (e.plate)
     t +=
-        R"(materials { name: "rubber" phase: SOLID density: 1100 youngs_modulus: 8000 poisson_ratio: 0.3 }
+        R"(materials { name: "rubber" phase: SOLID density: 1100 youngs_modulus: 8000 poisson_ratio: 0.3 )" +
+        std::string(e.heat ? "heat_capacity: 2000 thermal_conductivity: 0.2 " : "") + R"(}
 elastic_bodies { name: "plate" material: "rubber" shape { box { lo { x: 0.024 y: 0 } hi { x: 0.026 y: 0.02 } } }
   constraints { region { box { lo { x: 0.02 y: 0 } hi { x: 0.03 y: 0.002 } } } } }
 )";
@@ -174,6 +175,7 @@ int main(int argc, char** argv) {
       {"+ a drop of a second fluid", {.drop = true}},
       {"+ drop + surface tension", {.drop = true, .tension = true}},
       {"+ elastic plate", {.plate = true}},
+      {"+ heat + elastic plate (thermal FSI)", {.heat = true, .plate = true}},
   };
   for (const auto& v : variants) {
     sph::v1::Case c = sph::parse_case_text(scene(dx, v.effects));
