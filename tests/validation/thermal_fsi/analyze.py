@@ -11,7 +11,8 @@ the thesis' ordering IV > II > III > I of heat-transfer enhancement holds.
 Nu is averaged over both walls, the channel's length and the snapshots of the second half of
 the run. Reads result.h5 with h5dump (no Python HDF5 module needed).
 
-usage: analyze.py OUT_DIR   (OUT_DIR/I/result.h5 ... OUT_DIR/IV/result.h5)
+usage: analyze.py OUT_DIR [T_FROM]   (OUT_DIR/I/result.h5 ... OUT_DIR/IV/result.h5; Nu averaged
+       over the snapshots with t >= T_FROM, default the second half of each run)
 """
 import math
 import os
@@ -86,6 +87,7 @@ def nusselt(fluid, dx, bin_width=0.5):
 
 def main():
     out = sys.argv[1]
+    t_from = float(sys.argv[2]) if len(sys.argv) > 2 else None
     rows = []
     for c in CONFIGS:
         path = os.path.join(out, c, "result.h5")
@@ -97,11 +99,15 @@ def main():
         dx = 2 * min(p[1] for p in series[0][1])
         t_end = series[-1][0]
         D = [(t, mixing_index(f)) for t, f in series if t > 0]
-        late = [(t, f) for t, f in series if t >= t_end / 2]
+        late = [(t, f) for t, f in series if t >= (t_end / 2 if t_from is None else t_from)]
+        if not late or not D:
+            rows.append((c, None))  # stopped before the window
+            continue
         Nu = sum(nusselt(f, dx) for _, f in late) / len(late)
         rows.append((c, dict(t_end=t_end, Nu=Nu, D=D, dx=dx)))
     print("# Reduced TFSI heated channel (tests/validation/thermal_fsi)\n")
-    print("| configuration | t_end | mean Nu (second half) | D at t = 5, 10, end | minimum D (t) |")
+    window = "second half" if t_from is None else f"t >= {t_from:g}"
+    print(f"| configuration | t_end | mean Nu ({window}) | D at t = 5, 10, end | minimum D (t) |")
     print("|---|---|---|---|---|")
     for c, r in rows:
         if r is None:
