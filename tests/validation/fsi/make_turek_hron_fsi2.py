@@ -10,7 +10,10 @@ centre 2 D from the inlet and 2 D from the bottom wall (slightly off-centre, whi
 oscillation), c = 20 U0 = 30, Wendland C2 with h = 1.3 dx, no-slip walls. The thesis' dp is
 0.05 D. These are Turek & Hron's FSI2 numbers scaled by D = 0.1 m, U = 1 m/s, rho_f = 1000.
 
-usage: make_turek_hron_fsi2.py [DX] [T_END] > case.textproto
+HOURGLASS sets the beam's Material.hourglass_control (default 0, off): at dx = D/30 the beam's
+root went through the checkerboard mode without it (README.md).
+
+usage: make_turek_hron_fsi2.py [DX] [T_END] [HOURGLASS] > case.textproto
 """
 import sys
 
@@ -23,7 +26,7 @@ def box(ax, ay, bx, by):
     return f"box {{ lo {{ x: {ax:.10g} y: {ay:.10g} }} hi {{ x: {bx:.10g} y: {by:.10g} }} }}"
 
 
-def case(dx, t_end):
+def case(dx, t_end, hourglass=0.0):
     h_ratio = 1.3
     rc = 2 * h_ratio * dx
     wall_t = rc
@@ -56,7 +59,7 @@ materials {{
   phase: SOLID
   density: 10
   youngs_modulus: 1.4e3
-  poisson_ratio: 0.4
+  poisson_ratio: 0.4{f"{chr(10)}  hourglass_control: {hourglass:g}" if hourglass > 0 else ""}
 }}
 fluids {{ name: "channel" material: "fluid" shape {{ {fluid} }} }}
 walls {{ name: "bottom" shape {{ {box(-buf, -wall_t, L + buf, 0)} }} }}
@@ -87,7 +90,8 @@ output {{ interval: 1 series_interval: 0.02 }}
 def main():
     dx = float(sys.argv[1]) if len(sys.argv) > 1 else 0.05
     t_end = float(sys.argv[2]) if len(sys.argv) > 2 else 50.0
-    sys.stdout.write(case(dx, t_end))
+    hourglass = float(sys.argv[3]) if len(sys.argv) > 3 else 0.0
+    sys.stdout.write(case(dx, t_end, hourglass))
 
 
 if __name__ == "__main__":

@@ -2,7 +2,7 @@
 # Runs the Turek-Hron FSI2-type beam (make_turek_hron_fsi2.py) at several resolutions at once
 # and writes each run's tip series and analysis (analyze_turek_hron_fsi2.py) to OUT.
 #
-#   run_turek_hron_fsi2.sh OUT WALL_SECONDS "DX:RANKS:T_END" ...
+#   run_turek_hron_fsi2.sh OUT WALL_SECONDS "DX:RANKS:T_END[:HOURGLASS]" ...
 #
 # e.g. on a 16-core machine: run_turek_hron_fsi2.sh out 470 0.05:4:80 0.0333333333:12:70
 # Each run stops at T_END or after WALL_SECONDS of wall time (stop.max_wall_seconds), keeping
@@ -16,9 +16,9 @@ mkdir -p "$out"
 launcher=$(command -v orterun || command -v mpirun)
 pids=()
 for spec in "$@"; do
-  IFS=: read -r dx ranks t_end <<<"$spec"
+  IFS=: read -r dx ranks t_end hg <<<"$spec"
   name=fsi2_dx$dx
-  python3 "$here/make_turek_hron_fsi2.py" "$dx" "$t_end" |
+  python3 "$here/make_turek_hron_fsi2.py" "$dx" "$t_end" "${hg:-0}" |
     sed -e "s/^output {.*/output { interval: 1000 series_interval: 0.02 }\nstop { max_wall_seconds: $wall }/" \
       >"$out/$name.textproto"
   "$launcher" --oversubscribe --bind-to none -np "$ranks" sph-worker --case "$out/$name.textproto" \
@@ -27,7 +27,7 @@ for spec in "$@"; do
 done
 for p in "${pids[@]}"; do wait "$p"; done
 for spec in "$@"; do
-  IFS=: read -r dx ranks t_end <<<"$spec"
+  IFS=: read -r dx ranks t_end hg <<<"$spec"
   name=fsi2_dx$dx
   {
     echo "## dx = $dx D, $ranks ranks"
