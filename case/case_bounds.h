@@ -3,6 +3,7 @@
 // estimation and the scene builder recurse over shapes, loop over lattice indices and copy
 // names into messages, and may only do so on a case that keeps them. Every walk here is
 // iterative, so it is safe on a shape tree of any depth.
+#include <cstdint>
 #include <vector>
 
 #include "case/validate.h"
@@ -15,7 +16,8 @@ struct ShapeTreeSize {
   int depth = 0;  // 1 for a primitive, 1 + the deepest part for a combination
   int shapes = 0;
   int polygon_vertices = 0;
-  int points = 0;  // explicit points of point sets
+  int points = 0;                   // explicit points of point sets
+  std::int64_t mesh_triangles = 0;  // triangles of meshes
 };
 ShapeTreeSize measure_shape(const v1::Shape& s);
 

@@ -17,6 +17,9 @@ inline constexpr int kMaxShapeDepth = 32;
 inline constexpr int kMaxShapes = 1024;
 // Polygon vertices in a case, all polygons together (a polygon's distance visits each vertex).
 inline constexpr int kMaxPolygonVertices = 100000;
+// Triangles of all meshes in a case (TriangleMesh, inlined from STL files): 500000 triangles
+// inline to about 18 MB of case, and a distance query walks a hierarchy over them.
+inline constexpr int kMaxMeshTriangles = 500000;
 
 // --- Text -----------------------------------------------------------------------------------
 // Message nesting the text-format parser follows: a shape at depth n sits 2n messages below

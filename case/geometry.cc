@@ -1,5 +1,7 @@
 #include "case/geometry.h"
 
+#include "case/mesh/mesh_shape.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -263,15 +265,20 @@ class ShellShape final : public Shape {
   double t_;
 };
 
-std::vector<std::unique_ptr<Shape>> compile_list(const v1::ShapeList& l, int dim, double t) {
+std::unique_ptr<Shape> compile(const v1::Shape& s, int dim, double t, double exact_within);
+
+std::vector<std::unique_ptr<Shape>> compile_list(const v1::ShapeList& l, int dim, double t,
+                                                 double exact_within) {
   std::vector<std::unique_ptr<Shape>> out;
-  for (const auto& s : l.shapes()) out.push_back(compile_shape(s, dim, t));
+  for (const auto& s : l.shapes()) out.push_back(compile(s, dim, t, exact_within));
   return out;
 }
 
-}  // namespace
-
-std::unique_ptr<Shape> compile_shape(const v1::Shape& s, int dim, double t) {
+// exact_within: how far from its surface a shape's distance must be exact (a shell reads its
+// inner shape's distance up to its thickness, nested shells the sum); beyond, any value of the
+// right sign no larger in magnitude than the true distance will do, which lets a mesh skip its
+// nearest-triangle search far from its surface.
+std::unique_ptr<Shape> compile(const v1::Shape& s, int dim, double t, double exact_within) {
   switch (s.kind_case()) {
     case v1::Shape::kBox:
       return std::make_unique<BoxShape>(s.box(), dim);
@@ -286,22 +293,34 @@ std::unique_ptr<Shape> compile_shape(const v1::Shape& s, int dim, double t) {
     case v1::Shape::kPoints:
       return std::make_unique<PointSetShape>(s.points(), dim);
     case v1::Shape::kUnion:
-      return std::make_unique<UnionShape>(compile_list(s.union_(), dim, t));
+      return std::make_unique<UnionShape>(compile_list(s.union_(), dim, t, exact_within));
     case v1::Shape::kIntersection:
-      return std::make_unique<IntersectionShape>(compile_list(s.intersection(), dim, t));
+      return std::make_unique<IntersectionShape>(
+          compile_list(s.intersection(), dim, t, exact_within));
     case v1::Shape::kDifference: {
       std::vector<std::unique_ptr<Shape>> sub;
-      for (const auto& x : s.difference().subtract()) sub.push_back(compile_shape(x, dim, t));
-      return std::make_unique<DifferenceShape>(compile_shape(s.difference().base(), dim, t),
+      for (const auto& x : s.difference().subtract())
+        sub.push_back(compile(x, dim, t, exact_within));
+      return std::make_unique<DifferenceShape>(compile(s.difference().base(), dim, t, exact_within),
                                                std::move(sub));
     }
-    case v1::Shape::kShell:
-      return std::make_unique<ShellShape>(compile_shape(s.shell().inner(), dim, t),
-                                          s.shell().has_thickness() ? s.shell().thickness() : t);
+    case v1::Shape::kMesh:
+      return std::make_unique<MeshShape>(mesh_from_proto(s.mesh()), exact_within);
+    case v1::Shape::kShell: {
+      const double thickness = s.shell().has_thickness() ? s.shell().thickness() : t;
+      return std::make_unique<ShellShape>(
+          compile(s.shell().inner(), dim, t, exact_within + thickness), thickness);
+    }
     case v1::Shape::KIND_NOT_SET:
       break;
   }
   throw std::invalid_argument("shape has no kind");
+}
+
+}  // namespace
+
+std::unique_ptr<Shape> compile_shape(const v1::Shape& s, int dim, double t) {
+  return compile(s, dim, t, 0.0);
 }
 
 }  // namespace sph

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include "case/case_bounds.h"
 #include "case/case_limits.h"
 #include "case/data_lines.h"
+#include "case/mesh/triangle_mesh.h"
 #include "case/reference_data.h"
 #include "case/text_nesting.h"
 
@@ -76,9 +78,12 @@ std::vector<v1::Vec3> read_point_file(const std::string& path, const std::string
   return points;
 }
 
-// Explicit points the case holds (inlined or read so far), for the per-case budget.
+// Explicit points, polygon vertices and mesh triangles the case holds (inlined or read so
+// far), for the per-case budgets.
 struct PointBudget {
   int used = 0;
+  int polygon_vertices = 0;
+  std::int64_t mesh_triangles = 0;
 };
 
 // Recursion over the shape tree: callers check its depth first (measure_shape).
@@ -102,6 +107,40 @@ void inline_shape(v1::Shape& s, const std::string& base, const std::string& fiel
         budget.used += static_cast<int>(points.size());
         for (auto& v : points) *ps->add_points() = std::move(v);
         ps->clear_file();
+      }
+      break;
+    }
+    case v1::Shape::kPolygon: {
+      auto* poly = s.mutable_polygon();
+      if (!poly->file().empty()) {
+        std::filesystem::path p(poly->file());
+        if (p.is_relative()) p = std::filesystem::path(base) / p;
+        const int left = std::max(0, kMaxPolygonVertices - budget.polygon_vertices);
+        auto vertices =
+            read_point_file(p.string(), field + ".polygon.file", left,
+                            "the limit is " + std::to_string(kMaxPolygonVertices) +
+                                " polygon vertices per case and " +
+                                std::to_string(budget.polygon_vertices) + " are already in it");
+        budget.polygon_vertices += static_cast<int>(vertices.size());
+        for (auto& v : vertices) *poly->add_vertices() = std::move(v);
+        poly->clear_file();
+      }
+      break;
+    }
+    case v1::Shape::kMesh: {
+      auto* mesh = s.mutable_mesh();
+      if (!mesh->file().empty()) {
+        std::filesystem::path p(mesh->file());
+        if (p.is_relative()) p = std::filesystem::path(base) / p;
+        const auto left = static_cast<std::size_t>(
+            std::max<std::int64_t>(0, kMaxMeshTriangles - budget.mesh_triangles));
+        try {
+          read_stl(p.string(), left, *mesh);
+        } catch (const std::runtime_error& e) {
+          throw CaseLoadError(field + ".mesh.file: " + e.what());
+        }
+        budget.mesh_triangles += mesh->triangles_size() / 3;
+        mesh->clear_file();
       }
       break;
     }
@@ -178,6 +217,8 @@ void inline_point_files(v1::Case& c, const std::string& base_dir) {
     const ShapeTreeSize n = measure_shape(s);
     if (n.depth > kMaxShapeDepth) throw CaseLoadError(field + ": " + shape_depth_error(n.depth));
     budget.used += n.points;
+    budget.polygon_vertices += n.polygon_vertices;
+    budget.mesh_triangles += n.mesh_triangles;
   };
   for (int i = 0; i < c.fluids_size(); ++i)
     region(*c.mutable_fluids(i)->mutable_shape(), "fluids[" + std::to_string(i) + "].shape");

@@ -2,6 +2,12 @@
 #include "case/validate/validator.h"
 
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "case/geometry.h"
+#include "case/mesh/triangle_mesh.h"
 
 namespace sph::case_validation {
 
@@ -10,7 +16,7 @@ void Validator::shape(const v1::Shape& s, const std::string& f, bool top) {
   switch (s.kind_case()) {
     case v1::Shape::KIND_NOT_SET:
       error(f,
-            "shape has no kind (box, ball, cylinder, polygon, polar_curve, points, union, "
+            "shape has no kind (box, ball, cylinder, polygon, polar_curve, points, mesh, union, "
             "intersection, difference or shell)");
       break;
     case v1::Shape::kBox: {
@@ -42,7 +48,10 @@ void Validator::shape(const v1::Shape& s, const std::string& f, bool top) {
       break;
     case v1::Shape::kPolygon:
       if (d != 2) error(cat(f, "polygon"), "only in 2D cases");
-      if (s.polygon().vertices_size() < 3)
+      if (!s.polygon().file().empty())
+        error(cat(f, "polygon.file"),
+              "polygon files must be inlined before validation (sphctl and sph-worker do this)");
+      else if (s.polygon().vertices_size() < 3)
         error(cat(f, "polygon.vertices"), "needs at least 3 vertices");
       for (int i = 0; i < s.polygon().vertices_size(); ++i)
         if (!point_ok(s.polygon().vertices(i)))
@@ -69,6 +78,9 @@ void Validator::shape(const v1::Shape& s, const std::string& f, bool top) {
       for (int i = 0; i < s.points().points_size(); ++i)
         if (!point_ok(s.points().points(i)))
           point(s.points().points(i), idx(cat(f, "points.points"), i));
+      break;
+    case v1::Shape::kMesh:
+      mesh(s.mesh(), cat(f, "mesh"));
       break;
     case v1::Shape::kUnion:
     case v1::Shape::kIntersection: {
@@ -97,6 +109,91 @@ void Validator::shape(const v1::Shape& s, const std::string& f, bool top) {
         extent(s.shell().thickness(), cat(f, "shell.thickness"));
       }
       break;
+  }
+}
+
+// A mesh must be a closed, consistently oriented surface for its inside to mean anything, and
+// should overlap the domain: a mesh far outside it, or far larger or smaller, is most often a
+// file in other units than the case.
+void Validator::mesh(const v1::TriangleMesh& m, const std::string& f) {
+  if (c_.dimension() != 3) {
+    error(f, "only in 3D cases (use polygon, or polygon.file, in 2D)");
+    return;
+  }
+  if (!m.file().empty()) {
+    error(cat(f, "file"),
+          "mesh files must be inlined before validation (sphctl and sph-worker do this)");
+    return;
+  }
+  if (m.has_scale() && !(std::isfinite(m.scale()) && m.scale() > 0)) {
+    error(cat(f, "scale"), "must be a finite number > 0");
+    return;
+  }
+  if (!point_ok(m.offset())) {
+    point(m.offset(), cat(f, "offset"));
+    return;
+  }
+  if (m.vertices_size() % 3 != 0) {
+    error(cat(f, "vertices"), "needs three coordinates a vertex; it has " +
+                                  std::to_string(m.vertices_size()) + " numbers");
+    return;
+  }
+  for (int i = 0; i < m.vertices_size(); ++i)
+    if (!std::isfinite(m.vertices(i))) {
+      error(idx(cat(f, "vertices"), i), "must be a finite number");
+      return;
+    }
+  if (m.triangles_size() == 0 || m.triangles_size() % 3 != 0) {
+    error(cat(f, "triangles"),
+          "needs three vertex indices a triangle and at least one triangle; it has " +
+              std::to_string(m.triangles_size()) + " indices");
+    return;
+  }
+  const auto nv = static_cast<std::uint32_t>(m.vertices_size() / 3);
+  for (int i = 0; i < m.triangles_size(); ++i)
+    if (m.triangles(i) >= nv) {
+      error(idx(cat(f, "triangles"), i), "vertex index " + std::to_string(m.triangles(i)) +
+                                             " is not below the " + std::to_string(nv) +
+                                             " vertices");
+      return;
+    }
+  const TriangleMesh mesh = mesh_from_proto(m);
+  const MeshTopology top = check_topology(mesh);
+  if (!top.closed_and_oriented()) {
+    std::vector<std::string> parts;
+    if (top.open_edges > 0)
+      parts.push_back(std::to_string(top.open_edges) +
+                      " edges belong to one triangle only (holes)");
+    if (top.flipped_edges > 0)
+      parts.push_back(std::to_string(top.flipped_edges) +
+                      " edges are run in the same direction by both their triangles (flipped "
+                      "triangles)");
+    if (top.nonmanifold_edges > 0)
+      parts.push_back(std::to_string(top.nonmanifold_edges) +
+                      " edges belong to more than two triangles");
+    std::string what = "the surface must be closed and consistently oriented, but";
+    for (std::size_t k = 0; k < parts.size(); ++k) what.append(k ? "; " : " ").append(parts[k]);
+    error(f, what);
+    return;
+  }
+  Aabb box;
+  for (const auto& v : mesh.vertices) box.grow(v);
+  Aabb domain;
+  domain.grow(to_point(c_.domain().lo()));
+  domain.grow(to_point(c_.domain().hi()));
+  const double size = (box.hi - box.lo).maxCoeff(), room = (domain.hi - domain.lo).maxCoeff();
+  char buf[400];
+  if (size > 100 * room) {
+    std::snprintf(buf, sizeof buf,
+                  "spans %g m, %.0f times the domain's largest side (%g m): is the file in other "
+                  "units (mesh.scale, e.g. 0.001 for millimetres)?",
+                  size, size / room, room);
+    error(f, buf);
+  } else if (box.intersected(domain).empty()) {
+    std::snprintf(buf, sizeof buf,
+                  "lies outside the domain: the mesh spans [%g, %g] x [%g, %g] x [%g, %g]",
+                  box.lo.x(), box.hi.x(), box.lo.y(), box.hi.y(), box.lo.z(), box.hi.z());
+    error(f, buf);
   }
 }
 

@@ -76,6 +76,7 @@ class Validator {
 
   // shapes.cc, motion.cc
   void shape(const v1::Shape& s, const std::string& f, bool top);
+  void mesh(const v1::TriangleMesh& m, const std::string& f);
   void time_function(const v1::TimeFunction& tf, const std::string& f);
   void motion(const v1::Motion& m, const std::string& f);
   // velocity_fields.cc: beam_mode is refused unless elastic_body.
