@@ -31,6 +31,14 @@ std::vector<MaterialParams> resolve_materials(const v1::Case& c) {
     p.poisson_ratio = m.poisson_ratio();
     p.elastic_law = static_cast<int>(m.elastic_law());
     p.elastic_damping = m.elastic_damping();
+    if (m.has_plasticity()) {
+      const v1::J2Plasticity& pl = m.plasticity();
+      p.plastic = true;
+      p.yield_stress = pl.yield_stress();
+      p.saturation_stress = pl.saturation_stress() > 0 ? pl.saturation_stress() : pl.yield_stress();
+      p.saturation_exponent = pl.saturation_exponent();
+      p.linear_hardening = pl.linear_hardening();
+    }
     out.push_back(p);
   }
   return out;

@@ -26,6 +26,13 @@ struct MaterialParams {
   double poisson_ratio = 0;    // nu
   int elastic_law = 0;         // v1::ElasticLaw value (0 = SAINT_VENANT_KIRCHHOFF)
   double elastic_damping = 0;  // Kelvin-Voigt viscosity eta_d [Pa s]
+  // J2 plasticity (Material.plasticity; solver/elastic/j2_plasticity.h): off unless `plastic`;
+  // the hardening k(alpha) = sigma_0 + (sigma_inf - sigma_0)(1 - exp(-delta alpha)) + H alpha.
+  bool plastic = false;
+  double yield_stress = 0;         // sigma_0 [Pa]
+  double saturation_stress = 0;    // sigma_inf [Pa] (yield_stress where the case gives 0)
+  double saturation_exponent = 0;  // delta
+  double linear_hardening = 0;     // H [Pa]
   // Lame parameters from E and nu (thesis eq. 2.6) and the bulk modulus K = E / (3 (1 - 2 nu)).
   double lame_lambda() const {
     return youngs_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));

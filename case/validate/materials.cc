@@ -74,6 +74,7 @@ void Validator::elastic_constants(const v1::Material& m, const std::string& f) {
     if (m.elastic_law() != v1::ELASTIC_LAW_UNSPECIFIED) error(cat(f, "elastic_law"), why);
     if (m.elastic_damping() != 0) error(cat(f, "elastic_damping"), why);
     if (m.has_hourglass_control()) error(cat(f, "hourglass_control"), why);
+    if (m.has_plasticity()) error(cat(f, "plasticity"), why);
     return;
   }
   if (m.has_youngs_modulus())
@@ -92,9 +93,30 @@ void Validator::elastic_constants(const v1::Material& m, const std::string& f) {
     error(cat(f, "hourglass_control"), "must be in [0, " + num(kMaxHourglassControl) + "] (got " +
                                            num(m.hourglass_control()) +
                                            "); 0 turns the hourglass control off");
+  if (m.has_plasticity()) plasticity(m, f);
   if (!v1::ElasticLaw_IsValid(m.elastic_law()))
     error(cat(f, "elastic_law"), "unknown value " + std::to_string(m.elastic_law()) +
                                      " (SAINT_VENANT_KIRCHHOFF or NEO_HOOKEAN)");
+}
+
+// J2 plasticity (thesis eq. 40; solver/elastic/j2_plasticity.h): a positive initial flow
+// stress, saturation at or above it, non-negative hardening, and the thesis' elastic energy.
+void Validator::plasticity(const v1::Material& m, const std::string& mf) {
+  const v1::J2Plasticity& p = m.plasticity();
+  const std::string f = cat(mf, "plasticity");
+  positive(p.yield_stress(), cat(f, "yield_stress"), "must be > 0 [Pa]");
+  if (!finite(p.saturation_stress()) ||
+      (p.saturation_stress() != 0 && !(p.saturation_stress() >= p.yield_stress())))
+    error(cat(f, "saturation_stress"), "must be >= yield_stress (" + num(p.yield_stress()) +
+                                           " Pa) or 0 for none (got " + num(p.saturation_stress()) +
+                                           ")");
+  non_negative(p.saturation_exponent(), cat(f, "saturation_exponent"));
+  non_negative(p.linear_hardening(), cat(f, "linear_hardening"));
+  if (m.elastic_law() == v1::SAINT_VENANT_KIRCHHOFF)
+    error(cat(mf, "elastic_law"),
+          "SAINT_VENANT_KIRCHHOFF with plasticity: the elasto-plastic law's elastic part is the "
+          "neo-Hookean-type energy of the thesis (eqs. 33-34); leave elastic_law unset or "
+          "NEO_HOOKEAN");
 }
 
 void Validator::material_ref(const std::string& name, v1::MaterialPhase want,

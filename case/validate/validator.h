@@ -88,6 +88,7 @@ class Validator {
                     bool required);
   int material_position(const std::string& name) const;
   void elastic_constants(const v1::Material& m, const std::string& f);
+  void plasticity(const v1::Material& m, const std::string& f);
   void transport_properties(const std::string& name, const std::string& field);
 
   // case_size.cc

@@ -61,6 +61,20 @@
 // "elastic/<body>/strain_energy" (sum of V0 Psi(F)), summed exactly (solver/parallel/exact_sum.h)
 // so that they are bitwise the same on any rank count.
 //
+// J2 plasticity (Material.plasticity; solver/elastic/j2_plasticity.h, thesis sec. 5): a body of a
+// plastic material gets its Kirchhoff stress tau from the return mapping at the F of the step
+// (plane strain in 2D), P = tau F^-T (+ F S_damping), and keeps per particle the persistent
+// columns "plastic_metric" ((Cbar^p)^-1) and "equivalent_plastic_strain" (alpha, also a snapshot
+// field). The return mapping advances that state once per evaluation of the stresses: once per
+// step (kForces), or once per sub-step; a resumed run does not evaluate the forces of the
+// checkpointed step again, so the state is advanced exactly as in an uninterrupted run. The
+// strain energy series is then the elastic part (eqs. 33-34); the plastic work is not in it.
+//
+// Constraint forces: with constraints, series "elastic/<body>/constraint_force" (one row of D
+// values per constraint, in the order of ElasticBody.constraints) holds the force that the
+// constraint exerts on the body's particles it holds, -(internal + fluid + gravity forces on
+// them), summed exactly: the reaction force of a prescribed-motion test.
+//
 // Guard: a particle whose correction matrix is singular (it lost the reference neighbours that
 // span the space: a torn body) or whose F is inverted (det F <= 0) stops the run, naming the
 // body, the particle and the place.
@@ -76,6 +90,7 @@
 #include "solver/diagnostics/stability_guards.h"
 #include "solver/elastic/elastic_law.h"
 #include "solver/elastic/hourglass_control.h"
+#include "solver/elastic/j2_plasticity.h"
 #include "solver/elastic/total_lagrangian.h"
 #include "solver/parallel/exact_sum.h"
 #include "solver/physics/body_force.h"
@@ -148,12 +163,18 @@ class ElasticSolid final : public Unit<D> {
   void substep_bound(const ParticleStore<D>& s, const Comm& comm, double t);
   void place_constrained(ParticleStore<D>& s, Column<Vec<D>>& v, double t);
   void hold_constrained(ParticleStore<D>& s);
+  // P of owned particle i of a plastic material at F (the return mapping advances its state),
+  // and its von Mises stress into the output column.
+  Mat<D> plastic_stress(const ElasticConstants& law, std::uint16_t mat, std::size_t i,
+                        const Mat<D>& F, const Mat<D>& dFdt);
   void move_constrained(ParticleStore<D>& s, double t) { place_constrained(s, s.v, t); }
   void find_observed(const ParticleStore<D>& s, const Comm& comm);
   void fail(const ParticleStore<D>& s, std::size_t i, const StepContext<D>& ctx, const char* what);
 
   std::vector<MaterialParams> mats_;
   std::vector<ElasticConstants> laws_;  // per material
+  std::vector<J2Constants> j2_;         // per material, plastic_[k] != 0 only
+  std::vector<char> plastic_;           // per material: J2 plasticity on
   std::vector<double> inv_rho0_;        // per material
   std::vector<Body> bodies_;
   std::vector<MotionPath> paths_;  // per constraint, bodies in order
@@ -192,6 +213,13 @@ class ElasticSolid final : public Unit<D> {
   Column<double>* displacement_[D];  // x - X per axis (scratch, output)
   Column<double>& von_mises_;        // (scratch, output)
   Column<double>& strain_;           // (scratch, output)
+  // J2 plasticity only (null otherwise; persistent, not ghosted): (Cbar^p)^-1 and alpha (output).
+  Column<PlasticMetric>* metric_ = nullptr;
+  Column<double>* alpha_ = nullptr;
+  // Constraints without sub-steps only (null otherwise; persistent, not ghosted): the force the
+  // constraint exerts on each particle it holds, kept from kForces for sample().
+  Column<Vec<D>>* reaction_ = nullptr;
+  std::size_t constraints_ = 0;  // over all bodies
 };
 
 template <int D>
@@ -207,6 +235,8 @@ template <int D, class K>
 ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
     : mats_(b.materials),
       laws_(b.materials.size()),
+      j2_(b.materials.size()),
+      plastic_(b.materials.size(), 0),
       inv_rho0_(b.materials.size(), 0.0),
       kernel_(b.h),
       h_(b.h),
@@ -270,9 +300,29 @@ ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
                                      : ElasticLawKind::kSaintVenantKirchhoff,
                                  mp.elastic_damping);
     sound_speed_ = std::max(sound_speed_, law.sound_speed);
+    if (mp.plastic) {
+      J2Constants& j2 = j2_[static_cast<std::size_t>(m)];
+      j2.bulk = law.bulk;
+      j2.shear = law.mu;
+      j2.hardening = {mp.yield_stress, mp.saturation_stress, mp.saturation_exponent,
+                      mp.linear_hardening};
+      plastic_[static_cast<std::size_t>(m)] = 1;
+    }
     if (mp.elastic_damping > 0)
       damping_dt_ =
           std::min(damping_dt_, kDampingStepFactor * h_ * h_ * mp.rho0 / mp.elastic_damping);
+  }
+  if (std::find(plastic_.begin(), plastic_.end(), 1) != plastic_.end()) {
+    metric_ = &b.particles.template add<PlasticMetric>("plastic_metric", kName, true);
+    alpha_ = &b.particles.template add<double>("equivalent_plastic_strain", kName, true);
+    metric_->set_ghost(false);
+    alpha_->set_ghost(false);
+  }
+  constraints_ = paths_.size();
+  if (constrained_ && !solid_v_) {
+    reaction_ = &b.particles.template add<Vec<D>>("elastic_constraint_force", kName, true);
+    reaction_->set_ghost(false);
+    reaction_->set_zero_if_absent(true);  // checkpoints of code before the series
   }
   hourglass_ = HourglassControl<D>(c, b.materials, kernel_, b.dx);
   damping_dt_ = std::min(damping_dt_, kTimeStepFactor * hourglass_.time_scale());
@@ -285,6 +335,11 @@ ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
 template <int D, class K>
 void ElasticSolid<D, K>::initialize(std::size_t i, const SceneParticle& p) {
   F_[i] = Mat<D>::Identity();
+  if (metric_) {
+    (*metric_)[i] = PlasticMetric{};
+    (*alpha_)[i] = 0;
+  }
+  if (reaction_) (*reaction_)[i] = Vec<D>::Zero();
   if (solid_v_) {
     for (int a = 0; a < D; ++a) (*solid_v_)[i][a] = p.kind == Kind::kElastic ? p.v[a] : 0.0;
     (*held_force_)[i] = (*internal_)[i] = (*shown_a_)[i] = Vec<D>::Zero();
@@ -344,9 +399,12 @@ void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
   for (std::size_t i = 0; i < n; ++i) {
     if (kind[i] != Kind::kElastic) continue;
     const double m = s.m[i];
-    Vec<D> acc = (internal_force_on(s, i) + fluid_force_[i]) / m;
+    const Vec<D> force = internal_force_on(s, i) + fluid_force_[i];
+    Vec<D> acc = force / m;
     if (bodies_[body_[i]].gravity) acc += g;
     s.a[i] += acc;  // forces accumulate (solver/seam/unit.h)
+    if (reaction_ && constraint_[i] >= 0)
+      (*reaction_)[i] = bodies_[body_[i]].gravity ? Vec<D>(-force - m * g) : Vec<D>(-force);
     v_max = std::max(v_max, v[i].norm());
     if (constraint_[i] < 0) a_max = std::max(a_max, s.a[i].norm());
   }
@@ -404,9 +462,13 @@ void ElasticSolid<D, K>::stresses(StepContext<D>& ctx, const Vec<D>* v) {
         fail(s, i, ctx, buf);
       } else {
         F = Fi;
-        const Mat<D> S = second_piola<D>(law, F, sums.velocity * B);
-        pb_[i] = F * S * B;  // P B with P = F S (eq. 2.3)
-        von_mises_[i] = von_mises(cauchy_stress<D>(law, F, S));
+        if (metric_ && plastic_[mat[i]]) {
+          pb_[i] = plastic_stress(law, mat[i], i, F, sums.velocity * B) * B;
+        } else {
+          const Mat<D> S = second_piola<D>(law, F, sums.velocity * B);
+          pb_[i] = F * S * B;  // P B with P = F S (eq. 2.3)
+          von_mises_[i] = von_mises(cauchy_stress<D>(law, F, S));
+        }
         strain_[i] = equivalent_strain<D>(F);
       }
     }
@@ -417,6 +479,25 @@ void ElasticSolid<D, K>::stresses(StepContext<D>& ctx, const Vec<D>* v) {
     ctx.halo.update(s, {&pb_, &F_});
   else
     ctx.halo.update(s, {&pb_});
+}
+
+template <int D, class K>
+Mat<D> ElasticSolid<D, K>::plastic_stress(const ElasticConstants& law, std::uint16_t mat,
+                                          std::size_t i, const Mat<D>& F, const Mat<D>& dFdt) {
+  const Eigen::Matrix3d F3 = embed_3d<D>(F);
+  const J2Result r = j2_return_map(j2_[mat], F3, (*metric_)[i], (*alpha_)[i]);
+  // P = tau F^-T; in 2D F^-T is block diagonal (F_zz = 1), so the in-plane block of P is that of
+  // tau F^-T.
+  Mat<D> P = (r.tau * F3.inverse().transpose()).template topLeftCorner<D, D>();
+  Eigen::Matrix3d sigma = r.tau / F3.determinant();
+  if (law.damping != 0.0) {
+    // Kelvin-Voigt as for the elastic laws: S_d = eta_d dE/dt, P += F S_d.
+    const Mat<D> FSd = F * (law.damping * green_lagrange_rate<D>(F, dFdt));
+    P += FSd;
+    sigma.template topLeftCorner<D, D>() += FSd * F.transpose() / F3.determinant();
+  }
+  von_mises_[i] = von_mises(sigma);
+  return P;
 }
 
 template <int D, class K>
@@ -483,6 +564,7 @@ void ElasticSolid<D, K>::declare_output(ResultFile& result) {
   for (int a = 0; a < D; ++a) result.add_field(*displacement_[a]);
   result.add_field(von_mises_);
   result.add_field(strain_);
+  if (alpha_) result.add_field(*alpha_);
 }
 
 template <int D, class K>
@@ -503,8 +585,10 @@ void ElasticSolid<D, K>::sample(ResultFile& result, const StepContext<D>& ctx) {
   ctx.comm.sum_inplace(shown);
   // Kinetic and strain energy per body (exact sums: rank-independent bits).
   const std::size_t nb = bodies_.size();
+  const std::size_t nr = constraints_ * D;  // constraint forces, after the energies
+  const Vec<D> g = BodyForce<D>::damping_factor(ctx.t, gravity_ramp_) * gravity_;
   const std::vector<double> energy = exact_sum(
-      2 * nb,
+      2 * nb + nr,
       [&](auto&& emit) {
         for (std::size_t i = 0; i < s.owned(); ++i) {
           if (s.kind[i] != Kind::kElastic) continue;
@@ -512,8 +596,22 @@ void ElasticSolid<D, K>::sample(ResultFile& result, const StepContext<D>& ctx) {
           const double m = s.m[i];
           const Vec<D>& v = solid_v_ ? (*solid_v_)[i] : s.v[i];
           emit(2 * k, 0.5 * m * v.squaredNorm());
-          emit(2 * k + 1, m * inv_rho0_[s.material[i]] *
-                              strain_energy_density<D>(laws_[s.material[i]], F_[i]));
+          const std::uint16_t mat = s.material[i];
+          const double psi = metric_ && plastic_[mat]
+                                 ? j2_elastic_energy(j2_[mat], embed_3d<D>(F_[i]), (*metric_)[i])
+                                 : strain_energy_density<D>(laws_[mat], F_[i]);
+          emit(2 * k + 1, m * inv_rho0_[mat] * psi);
+          if (constraint_[i] < 0 || nr == 0) continue;
+          Vec<D> held;
+          if (reaction_) {
+            held = (*reaction_)[i];
+          } else {  // sub-steps: the last sub-step's internal force and the held fluid force
+            held = -(*internal_)[i] - (*held_force_)[i];
+            if (bodies_[k].gravity) held -= m * g;
+          }
+          const std::size_t row =
+              bodies_[k].first_constraint + static_cast<std::size_t>(constraint_[i]);
+          for (int a = 0; a < D; ++a) emit(2 * nb + row * D + static_cast<std::size_t>(a), held[a]);
         }
       },
       ctx.comm);
@@ -529,6 +627,15 @@ void ElasticSolid<D, K>::sample(ResultFile& result, const StepContext<D>& ctx) {
     slot += np;
     result.put(base + "kinetic_energy", energy[2 * k]);
     result.put(base + "strain_energy", energy[2 * k + 1]);
+    const std::size_t nc =
+        (k + 1 < nb ? bodies_[k + 1].first_constraint : constraints_) - bodies_[k].first_constraint;
+    if (nc > 0) {
+      const auto first =
+          energy.begin() + static_cast<std::ptrdiff_t>(2 * nb + bodies_[k].first_constraint * D);
+      result.put(base + "constraint_force",
+                 std::vector<double>(first, first + static_cast<std::ptrdiff_t>(nc * D)),
+                 {nc, static_cast<std::uint64_t>(D)});
+    }
   }
 }
 

@@ -18,7 +18,8 @@ Handle open_file(const std::string& path, MPI_Comm comm, bool create) {
   // The 1.8 file format (readable by every HDF5 since 2008) stores an attribute larger than
   // 64 KiB densely instead of refusing it: /meta/case_text holds the whole case, and a case
   // with meshes or point sets inlined exceeds that.
-  check(H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V110), "H5Pset_libver_bounds");
+  if (create)
+    check(H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V110), "H5Pset_libver_bounds");
   if (create)
     return Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
                   "creating " + path);

@@ -677,6 +677,43 @@ elastic_bodies { name: "d" shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8
   EXPECT_TRUE(has_error(errs, "elastic_bodies[3].material", "is required")) << dump(errs);
 }
 
+TEST(CaseValidation, PlasticityFieldsAndLimits) {
+  // J2 plasticity (Material.plasticity): refused on a FLUID material, each limit by name.
+  auto errs = errors_of(R"(materials { name: "oil" density: 900 eos { sound_speed: 10 }
+  plasticity { yield_stress: 1e6 } })");
+  EXPECT_TRUE(has_error(errs, "materials[1].plasticity", "set on a FLUID material")) << dump(errs);
+  errs = errors_of(R"(materials { name: "steel" phase: SOLID density: 7850 youngs_modulus: 2e11
+  poisson_ratio: 0.29 elastic_law: SAINT_VENANT_KIRCHHOFF plasticity { yield_stress: 0
+  saturation_stress: -1 saturation_exponent: -2 linear_hardening: -3 } })");
+  EXPECT_TRUE(has_error(errs, "materials[1].plasticity.yield_stress", "must be > 0 [Pa] (got 0)"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "materials[1].plasticity.saturation_stress",
+                        "must be >= yield_stress (0 Pa) or 0 for none (got -1)"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "materials[1].plasticity.saturation_exponent", "must be >= 0"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "materials[1].plasticity.linear_hardening", "must be >= 0"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "materials[1].elastic_law", "SAINT_VENANT_KIRCHHOFF with plasticity"))
+      << dump(errs);
+  // Not finite: refused before, by the case's bounds, by name.
+  errs = errors_of(R"(materials { name: "steel" phase: SOLID density: 7850 youngs_modulus: 2e11
+  poisson_ratio: 0.29 plasticity { yield_stress: 4.5e8 linear_hardening: nan } })");
+  EXPECT_TRUE(has_error(errs, "materials[1].plasticity.linear_hardening", "must be finite"))
+      << dump(errs);
+  errs = errors_of(R"(materials { name: "steel" phase: SOLID density: 7850 youngs_modulus: 2e11
+  poisson_ratio: 0.29 plasticity { yield_stress: 4.5e8 saturation_stress: 4e8 } })");
+  EXPECT_TRUE(has_error(errs, "materials[1].plasticity.saturation_stress",
+                        "must be >= yield_stress (4.5e+08 Pa) or 0 for none (got 4e+08)"))
+      << dump(errs);
+  // Table 5.1 of the thesis passes.
+  errs = errors_of(R"(materials { name: "steel" phase: SOLID density: 7850 youngs_modulus: 2.069e11
+  poisson_ratio: 0.29 elastic_law: NEO_HOOKEAN plasticity { yield_stress: 4.5e8
+  saturation_stress: 7.15e8 saturation_exponent: 16.93 linear_hardening: 1.2924e8 } })");
+  for (const auto& e : errs)
+    EXPECT_EQ(e.field.find("materials[1]"), std::string::npos) << e.field << ": " << e.message;
+}
+
 TEST(CaseValidation, ElasticBodyNamesAndShape) {
   auto errs = plate_errors(std::string(kPlate) + kPlate);
   EXPECT_TRUE(has_error(errs, "elastic_bodies[1].name", "duplicate elastic body name 'plate'"))
