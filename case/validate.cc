@@ -29,6 +29,7 @@ std::vector<FieldError> validate_case(const v1::Case& c, const ValidationLimits&
   v.add_uncapped(validate_reference(c));
   v.add(validate_surface_tension(c));
   v.run_settings();
+  v.density_diffusion();
   v.probes();
   v.case_size();
   return v.reported();

@@ -52,6 +52,7 @@ class Validator {
   void thermal();                                                      // thermal.cc
   void open_boundaries();                                              // open_boundaries.cc
   void run_settings();                                                 // run_settings.cc
+  void density_diffusion();                                            // density_diffusion.cc
   void probes();                                                       // probes.cc
   void case_size();                                                    // case_size.cc
 

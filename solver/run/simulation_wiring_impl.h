@@ -152,7 +152,8 @@ void Simulation<D, K>::build_seam_units() {
                               wall_volume_,
                               kernel_.W(0.0),
                               c_.time().has_cfl_factor() ? c_.time().cfl_factor() : 1.0,
-                              wall_index_};
+                              wall_index_,
+                              body_ ? &*body_ : nullptr};
   unit_set_ = UnitSet<D>(make_units<D>(b));
   for (const auto& u : unit_set_.units()) {
     units_.push_back(u->name());

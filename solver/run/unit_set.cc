@@ -7,6 +7,7 @@
 
 #include "solver/core/kernel.h"
 #include "solver/elastic/elastic_solid.h"
+#include "solver/physics/density_diffusion.h"
 #include "solver/physics/scalar_transport.h"
 #include "solver/physics/surface_tension.h"
 #include "solver/physics/wall_motion.h"
@@ -41,6 +42,17 @@ double UnitSet<D>::max_time_step() const {
 template <int D>
 std::vector<std::unique_ptr<Unit<D>>> make_units(const UnitBuildContext<D>& b) {
   std::vector<std::unique_ptr<Unit<D>>> units;
+  if (b.c.fluid_model().has_density_diffusion()) {
+    // Validation admits it with one fluid material only (solver/physics/density_diffusion.h).
+    std::size_t fluid = 0;
+    while (fluid < b.fluids.size() && !b.fluids[fluid].fluid) ++fluid;
+    if (fluid < b.fluids.size()) {
+      const BodyForce<D> none(Vec<D>::Zero(), 0.0, Vec<D>::Zero());
+      units.push_back(std::make_unique<DensityDiffusion<D>>(
+          b.c.fluid_model().density_diffusion(), b.fluids[fluid],
+          b.body_force ? *b.body_force : none, b.h, b.wall_volume, b.cfl_factor));
+    }
+  }
   if (b.wall_index) {
     std::vector<MotionPath> paths;
     for (const auto& w : b.c.walls()) paths.emplace_back(w.motion(), D);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "case/materials.h"
+#include "solver/physics/body_force.h"
 #include "solver/physics/fluid_table.h"
 #include "solver/seam/unit.h"
 #include "sph/v1/case.pb.h"
@@ -26,6 +27,7 @@ struct UnitBuildContext {
   double self_kernel = 0;  // W(0)
   double cfl_factor = 1;   // time.cfl_factor (1 when unset)
   const Column<std::uint16_t>* wall_index = nullptr;  // which wall a wall particle is (or null)
+  const BodyForce<D>* body_force = nullptr;           // on the fluid (null: none)
 };
 
 template <int D>

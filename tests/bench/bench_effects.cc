@@ -1,11 +1,12 @@
 // What each effect costs (not a test): one scene, a disk settling in a heated box, run as
 // fluid only, + heat conduction, + concentration diffusion, + a rigid body, + contact, + heat
 // with bodies and contact, + phase change (the disk melting from its rim), + a drop of a second
-// fluid in place of the disk, + surface tension between the two fluids, and for each the time
+// fluid in place of the disk, + surface tension between the two fluids, the fluid with density
+// by the continuity equation without and with density diffusion, and for each the time
 // per step by unit and the per-particle storage by unit. A unit a scene does not use must show no
 // time and no storage.
 //
-//   bench_effects [--steps S] [--dx DX] [--pair-kernel table|stream]
+//   bench_effects [--steps S] [--dx DX] [--pair-kernel table|stream] [--only LABEL_PART]
 #include <mpi.h>
 
 #include <cstdio>
@@ -23,6 +24,8 @@ struct Effects {
   bool heat = false, body = false, contact = false, concentration = false, phase = false;
   bool drop = false, tension = false;  // a drop of a second fluid; surface tension on its rim
   bool plate = false;                  // an elastic plate standing on the floor, clamped there
+  bool continuity = false;             // density by the continuity equation, not summation
+  bool density_diffusion = false;      // with its density diffusion (Fourtakas, delta 0.1)
 };
 
 std::string scene(double dx, const Effects& e) {
@@ -91,8 +94,13 @@ elastic_bodies { name: "plate" material: "rubber" shape { box { lo { x: 0.024 y:
     t +=
         R"(phase_transitions { solid_material: "solid" fluid_material: "melt" driver: TEMPERATURE transition_value: 300.5 hysteresis: 0.2 reversible: true }
 )";
-  t += R"(fluid_model { density: SUMMATION transport_velocity: true }
-gravity { acceleration { y: -9.81 } }
+  t += e.continuity ? "fluid_model { density: CONTINUITY transport_velocity: true " +
+                          std::string(e.density_diffusion
+                                          ? "density_diffusion { form: FOURTAKAS delta: 0.1 } "
+                                          : "") +
+                          "}\n"
+                    : "fluid_model { density: SUMMATION transport_velocity: true }\n";
+  t += R"(gravity { acceleration { y: -9.81 } }
 time { end_time: 1e9 }
 output { series_interval: 1e9 })";
   return t;
@@ -148,11 +156,13 @@ int main(int argc, char** argv) {
   int steps = 200;
   double dx = 2.5e-4;
   std::string pair_kernel = "table";
+  std::string only;  // run only the variants whose label contains it
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--steps") steps = std::stoi(argv[i + 1]);
     if (a == "--dx") dx = std::stod(argv[i + 1]);
     if (a == "--pair-kernel") pair_kernel = argv[i + 1];
+    if (a == "--only") only = argv[i + 1];
   }
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -176,8 +186,11 @@ int main(int argc, char** argv) {
       {"+ drop + surface tension", {.drop = true, .tension = true}},
       {"+ elastic plate", {.plate = true}},
       {"+ heat + elastic plate (thermal FSI)", {.heat = true, .plate = true}},
+      {"continuity density", {.continuity = true}},
+      {"continuity + density diffusion", {.continuity = true, .density_diffusion = true}},
   };
   for (const auto& v : variants) {
+    if (!only.empty() && std::string(v.label).find(only) == std::string::npos) continue;
     sph::v1::Case c = sph::parse_case_text(scene(dx, v.effects));
     if (pair_kernel == "stream") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_STREAM);
     run(v.label, c, steps, MPI_COMM_WORLD);

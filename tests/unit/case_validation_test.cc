@@ -65,6 +65,30 @@ TEST(CaseValidation, NegativeDx) {
   EXPECT_TRUE(has_error(errs, "dx", "must be > 0")) << dump(errs);
 }
 
+TEST(CaseValidation, DensityDiffusionNeedsContinuityOneFluidAndDeltaInRange) {
+  const std::string dd = "fluid_model { density: CONTINUITY density_diffusion { ";
+  EXPECT_TRUE(errors_of(dd + "form: FOURTAKAS delta: 0.1 } }").empty());
+  EXPECT_TRUE(errors_of(dd + "form: MOLTENI_COLAGROSSI } }").empty());  // delta 0.1
+  EXPECT_TRUE(has_error(errors_of(dd + "delta: nan } }"), "fluid_model.density_diffusion.delta",
+                        "must be finite"));
+  for (const char* bad : {"delta: 0", "delta: -0.1", "delta: 1.5"}) {
+    const auto errs = errors_of(dd + bad + " } }");
+    EXPECT_TRUE(has_error(errs, "fluid_model.density_diffusion.delta", "must be in (0, 1]"))
+        << bad << ": " << dump(errs);
+  }
+  auto errs = errors_of("fluid_model { density: SUMMATION density_diffusion { } }");
+  EXPECT_TRUE(has_error(errs, "fluid_model.density_diffusion",
+                        "needs fluid_model.density: "
+                        "CONTINUITY"))
+      << dump(errs);
+  errs = errors_of("fluid_model { density_diffusion { } }");  // unspecified = summation
+  EXPECT_TRUE(has_error(errs, "fluid_model.density_diffusion", "CONTINUITY")) << dump(errs);
+  errs = errors_of(dd + "} }\nmaterials { name: \"air\" density: 1 eos { sound_speed: 10 } }");
+  EXPECT_TRUE(
+      has_error(errs, "fluid_model.density_diffusion", "one fluid material; the case has 2"))
+      << dump(errs);
+}
+
 TEST(CaseValidation, OutputIntervalBoundsTheSnapshotCount) {
   // end_time 1 / interval 1e-9: a billion snapshot times would be stored before the run.
   EXPECT_TRUE(
