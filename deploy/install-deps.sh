@@ -16,6 +16,8 @@ packages=(
   libgtest-dev libbenchmark-dev                # tests
   clang libclang-rt-14-dev                     # the fuzz targets (libFuzzer, sanitizers)
   python3 python3-numpy python3-h5py python3-matplotlib  # result checks and report plots
+  python3-grpcio python3-protobuf python3-pandas  # the sphd Python package (docs/python.md)
+  python3-pytest python3-venv python3-pip python3-setuptools  # its tests, its pip install
 )
 missing=()
 for p in "${packages[@]}"; do
