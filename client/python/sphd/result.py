@@ -162,8 +162,9 @@ class Result:
         return pd.DataFrame(columns, index=pd.Index(time, name="time"))
 
     def bodies(self):
-        """Per-body series of the rigid bodies: {name: {series: array}}, names from the case
-        (bodies in case order)."""
+        """Per-body series of the rigid bodies: {name: {series: array}}. The series have one
+        column per body slot, slot k named after the case's k-th body; melting can empty a slot
+        and hand it to a body made later, which the slot's `serial` series tells (README)."""
         data = self.series("bodies")
         time = data.pop("time")
         names = [b.name or f"body_{k}" for k, b in enumerate(self.case.bodies)]
