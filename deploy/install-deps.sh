@@ -24,6 +24,7 @@ packages=(
   libprotobuf-dev protobuf-compiler            # the case schema
   libgrpc++-dev libgrpc-dev protobuf-compiler-grpc libssl-dev  # the service (gRPC config needs all)
   libsqlite3-dev                               # the job queue
+  libcpp-httplib-dev                           # sph-server --metrics-address (Prometheus)
   libgtest-dev libbenchmark-dev                # tests
   clang libclang-rt-14-dev                     # the fuzz targets (libFuzzer, sanitizers)
   python3 python3-numpy python3-h5py python3-matplotlib  # result checks and report plots

@@ -411,6 +411,48 @@ v1::Job JobStore::get(std::int64_t id, bool include_case) {
   return read_job(id, include_case, true);
 }
 
+StoreCounts JobStore::counts() {
+  std::lock_guard lock(mu_);
+  StoreCounts c;
+  for (auto st : {v1::JOB_STATE_QUEUED, v1::JOB_STATE_RUNNING, v1::JOB_STATE_SUCCEEDED,
+                  v1::JOB_STATE_FAILED, v1::JOB_STATE_CANCELLED})
+    c.jobs_by_state[service::state_name(st)] = 0;
+  {
+    auto st =
+        db_.prepare("SELECT state, COUNT(*), TOTAL(estimated_particles) FROM jobs GROUP BY state");
+    while (st.step()) {
+      c.jobs_by_state[st.text(0)] = st.int64(1);
+      if (st.text(0) == "QUEUED") c.queued_particles = st.real(2);
+    }
+  }
+  for (auto o : {v1::ATTEMPT_OUTCOME_UNSPECIFIED, v1::ATTEMPT_COMPLETED, v1::ATTEMPT_FAILED,
+                 v1::ATTEMPT_CANCELLED, v1::ATTEMPT_INTERRUPTED, v1::ATTEMPT_LEASE_EXPIRED})
+    c.attempts_by_outcome[outcome_name(o)] = 0;
+  {
+    auto st =
+        db_.prepare("SELECT outcome, COUNT(*), TOTAL(number > 1) FROM attempts GROUP BY outcome");
+    while (st.step()) {
+      c.attempts_by_outcome[st.text(0)] = st.int64(1);
+      c.attempts_requeued += static_cast<std::int64_t>(st.real(2));
+    }
+  }
+  {
+    auto st = db_.prepare(
+        "SELECT result, files_deleted_bytes FROM jobs WHERE result IS NOT NULL OR "
+        "files_deleted_ms IS NOT NULL");
+    while (st.step()) {
+      if (!st.is_null(1)) {
+        c.results_deleted_bytes += st.int64(1);
+        continue;
+      }
+      v1::ResultManifest m;
+      if (!m.ParseFromString(st.blob(0))) continue;
+      for (const auto& f : m.files()) c.result_bytes += f.size();
+    }
+  }
+  return c;
+}
+
 JobPage JobStore::list(const std::vector<v1::JobState>& states, int page_size,
                        std::int64_t before) {
   std::lock_guard lock(mu_);

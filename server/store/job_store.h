@@ -5,6 +5,7 @@
 // passed in (unix milliseconds) so that lease expiry is testable without sleeping. Concurrent
 // submits share transactions (group commit); each returns once its own row is durable.
 #include <cstdint>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <span>
@@ -61,6 +62,17 @@ struct ClaimInfo {
   int ranks = 1;
 };
 
+// What the store holds, for sph-server's metrics (server/metrics/): read from the database at
+// each scrape, so the numbers survive a restart and agree with ListJobs.
+struct StoreCounts {
+  std::map<std::string, std::int64_t> jobs_by_state;        // every state, 0 when none
+  double queued_particles = 0;                              // estimated, over queued jobs
+  std::map<std::string, std::int64_t> attempts_by_outcome;  // RUNNING for unfinished ones
+  std::int64_t attempts_requeued = 0;      // attempts after a job's first: each followed a requeue
+  std::int64_t result_bytes = 0;           // files in the result manifests of jobs not deleted
+  std::int64_t results_deleted_bytes = 0;  // freed by DeleteJobFiles
+};
+
 struct JobPage {
   std::vector<v1::Job> jobs;
   std::int64_t next_before = 0;  // id to continue below, 0 on the last page
@@ -110,6 +122,8 @@ class JobStore {
   std::string database_id();
   // Whether any job was ever submitted to this database.
   bool has_jobs();
+
+  StoreCounts counts();
 
   std::vector<v1::JobEvent> events_after(std::int64_t id, std::int64_t after, int limit);
   v1::JobState state(std::int64_t id);
