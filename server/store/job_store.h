@@ -73,6 +73,16 @@ struct StoreCounts {
   std::int64_t results_deleted_bytes = 0;  // freed by DeleteJobFiles
 };
 
+struct LogPage {
+  std::vector<v1::LogLine> lines;
+  v1::JobState state = v1::JOB_STATE_UNSPECIFIED;
+  std::int64_t dropped_lines = 0;
+};
+
+// Per attempt the store keeps the newest this many bytes of log text (sphctl logs).
+inline constexpr std::int64_t kMaxLogBytesPerAttempt = 256 << 10;
+inline constexpr std::size_t kMaxLogLineBytes = 1024;
+
 struct JobPage {
   std::vector<v1::Job> jobs;
   std::int64_t next_before = 0;  // id to continue below, 0 on the last page
@@ -124,6 +134,8 @@ class JobStore {
   bool has_jobs();
 
   StoreCounts counts();
+  // Log lines of job `id` with sequence > after (of `attempt` only, when > 0), at most limit.
+  LogPage logs(std::int64_t id, int attempt, std::int64_t after, int limit);
 
   std::vector<v1::JobEvent> events_after(std::int64_t id, std::int64_t after, int limit);
   v1::JobState state(std::int64_t id);
@@ -155,6 +167,8 @@ class JobStore {
                    const google::protobuf::Map<std::string, double>* unit_seconds = nullptr);
   void store_checkpoint(std::int64_t id, v1::Checkpoint cp, int attempt, std::int64_t now_ms);
   void store_progress(std::int64_t id, const v1::ProgressInfo& p, std::int64_t now_ms);
+  void store_log(std::int64_t id, int attempt,
+                 const google::protobuf::RepeatedPtrField<v1::LogLine>& lines, std::int64_t now_ms);
   v1::Job read_job(std::int64_t id, bool include_case, bool include_attempts);
   void publish();
 

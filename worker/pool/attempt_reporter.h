@@ -38,6 +38,11 @@ class AttemptReporter {
   void on_progress(const Progress& p);
   void on_progress(const v1::ProgressInfo& p);  // e.g. with a study's ladder progress
   void on_checkpoint(const std::string& path, std::int64_t step, double time);
+  // A line for the attempt's log on the server (sphctl logs): sent with the next report, or
+  // with the Finish (take_log). Any thread.
+  void log(const std::string& text);
+  // After stop(): the lines no report carried, for the Finish.
+  std::vector<v1::LogLine> take_log();
   // Polled by the solver once per step; doubles as its heartbeat.
   bool should_stop();
 
@@ -76,6 +81,8 @@ class AttemptReporter {
   bool progress_sent_ = true;
   std::vector<v1::Checkpoint> pending_checkpoints_;
   std::optional<v1::Checkpoint> last_checkpoint_;
+  std::vector<v1::LogLine> pending_log_;
+  std::int64_t log_dropped_ = 0;  // lines dropped while the server was away too long
   std::atomic<bool> cancel_requested_{false};
   std::atomic<bool> lost_{false};
   bool server_away_ = false;  // only the reporting thread uses it
