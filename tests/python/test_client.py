@@ -129,6 +129,22 @@ def test_cancel(service):
     assert sphd.state_name(client.status(job.id).state) == "CANCELLED"
 
 
+def test_logs(service):
+    client = service.client()
+    job = client.submit(with_end_time(case_path("tiny_dam_break_2d.textproto"), 0.6))
+    followed = list(client.logs(job.id, follow=True))  # to the guard that stops it
+    texts = [l.text for l in followed]
+    print("\n".join(texts))
+    assert texts[0].startswith("tiny_dam_break_2d, output ")
+    assert any(t.startswith("progress step ") for t in texts)
+    assert "solid fraction" in texts[-1] and "(guards.max_solid_fraction)" in texts[-1]
+    assert [l.sequence for l in followed] == list(range(1, len(followed) + 1))
+    assert [l.text for l in client.logs(job.id, after_sequence=2)] == texts[2:]
+    assert list(client.logs(job.id, attempt=2)) == []
+    with pytest.raises(sphd.NotFound):
+        list(client.logs("job-999"))
+
+
 def test_token(tmp_path):
     server = Server(str(tmp_path), token="s3cret")
     try:

@@ -133,6 +133,24 @@ void AttemptReporter::stop() {
   if (thread_.joinable()) thread_.join();
 }
 
+void AttemptReporter::log_progress() {
+  std::lock_guard lock(mu_);
+  if (progress_) log_progress_locked(*progress_);
+}
+
+void AttemptReporter::log_progress_locked(const v1::ProgressInfo& p) {
+  if (p.step() == logged_step_) return;
+  logged_step_ = p.step();
+  if (pending_log_.size() >= kMaxPendingLogLines) {
+    pending_log_.erase(pending_log_.begin());
+    ++log_dropped_;
+  }
+  v1::LogLine& l = pending_log_.emplace_back();
+  l.set_attempt(attempt_);
+  l.set_time_unix_ms(unix_ms());
+  l.set_text(progress_line(p));
+}
+
 void AttemptReporter::finish_acknowledged(const std::string& path) {
   std::vector<v1::Checkpoint> pending;
   {
@@ -180,17 +198,8 @@ void AttemptReporter::send() {
     if (progress_ && !progress_sent_) *req.mutable_progress() = *progress_;
     for (const auto& cp : pending_checkpoints_) *req.add_checkpoints() = cp;
     urgent_ = false;
-    if (req.has_progress()) {
-      // One progress line per report, queued like any other line.
-      if (pending_log_.size() >= kMaxPendingLogLines) {
-        pending_log_.erase(pending_log_.begin());
-        ++log_dropped_;
-      }
-      v1::LogLine& l = pending_log_.emplace_back();
-      l.set_attempt(attempt_);
-      l.set_time_unix_ms(unix_ms());
-      l.set_text(progress_line(req.progress()));
-    }
+    // One progress line per report, queued like any other line.
+    if (req.has_progress()) log_progress_locked(req.progress());
     for (const auto& l : pending_log_) *req.add_log() = l;
   }
   v1::ReportResponse resp;

@@ -265,6 +265,7 @@ void run_attempt(const v1::ClaimResponse& claim, const PoolOptions& o, ServerLin
 
   // The reporter renews the lease until the Finish is ready: hashing large result files can
   // take longer than a lease, and an expired lease would throw the finished run away.
+  reporter->log_progress();
   service::log_line("%s attempt %d: %s%s%s", claim.job_id().c_str(), claim.attempt(),
                     summary(r, ranks).c_str(), r.message.empty() ? "" : ": ", r.message.c_str());
   finish.set_outcome(outcome_for(r.status));

@@ -202,6 +202,37 @@ class Client:
                           service_pb2.CancelJobRequest(job_id=job_id, reason=reason),
                           "cancel " + job_id)
 
+    def logs(self, job_id, attempt=0, follow=False, after_sequence=0):
+        """The worker pool's log lines for the job (sphd.service_pb2.LogLine: attempt,
+        sequence, time_unix_ms, text), oldest first, of one attempt or all (0). With follow,
+        new lines as they come until the job ends, like `sphctl logs --follow`."""
+        req = service_pb2.GetJobLogsRequest(job_id=job_id, attempt=attempt,
+                                            after_sequence=after_sequence)
+        outage_since = None
+        while True:
+            try:
+                page = self._jobs.GetJobLogs(req, timeout=self.timeout, metadata=self._metadata)
+            except grpc.RpcError as e:
+                err = from_rpc_error(e, "logs " + job_id, self.address)
+                now = time.monotonic()
+                if not follow or not isinstance(err, Unavailable):
+                    raise err from None
+                if outage_since is None:
+                    outage_since = now
+                elif now - outage_since > WATCH_RECONNECT_SECONDS:
+                    raise err from None
+                time.sleep(1)
+                continue
+            outage_since = None
+            for line in page.lines:
+                req.after_sequence = line.sequence
+                yield line
+            if page.lines:
+                continue
+            if not follow or is_terminal(page.state):
+                return
+            time.sleep(0.5)
+
     def fetch(self, job_id, dir=None, file=None):
         """Downloads the job's result files (or only `file`) into `dir` (default: the job id),
         checking each file's size and sha256 against the manifest; returns the paths written.
