@@ -24,6 +24,9 @@ commands:
   list [--state S]... [--limit N]
                          jobs, newest first (states: QUEUED RUNNING SUCCEEDED FAILED CANCELLED)
   watch JOB [--from SEQ] follow a job until it ends (a progress bar on a terminal)
+  logs JOB [--attempt N] [--follow]
+                         the worker pool's log lines for the job (progress, warnings, the
+                         guard's diagnosis); --follow streams them until the job ends
   cancel JOB [--reason TEXT]
                          cancel a job (idempotent); a running job keeps its partial output
   fetch JOB [-o DIR] [--file NAME]
@@ -40,7 +43,7 @@ options (anywhere on the line):
 
 exit codes: 0 ok, 1 error, 2 usage, 3 invalid case, 4 not found, 5 server unavailable,
   6 authentication, 7 verification/IO failure, 8 conflict or no result yet,
-  10 job FAILED, 11 job CANCELLED (watch, submit --watch)
+  10 job FAILED, 11 job CANCELLED (watch, submit --watch, logs --follow)
 )";
 
 bool expect_positionals(ArgScanner& args, size_t count, const char* usage,
@@ -72,6 +75,7 @@ int run(int argc, char** argv) {
   if (command == "status") return cmd_status(*g, std::move(rest));
   if (command == "list") return cmd_list(*g, std::move(rest));
   if (command == "watch") return cmd_watch(*g, std::move(rest));
+  if (command == "logs") return cmd_logs(*g, std::move(rest));
   if (command == "cancel") return cmd_cancel(*g, std::move(rest));
   if (command == "fetch") return cmd_fetch(*g, std::move(rest));
   if (command == "delete") return cmd_delete(*g, std::move(rest));

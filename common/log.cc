@@ -5,6 +5,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <ctime>
+#include <mutex>
 #include <string>
 
 #include "common/time_text.h"
@@ -13,7 +14,14 @@ namespace sph::service {
 namespace {
 const char* g_name = "sphd";
 std::atomic<bool> g_enabled{true};
+std::mutex g_sink_mu;
+std::function<void(const std::string&)> g_sink;
 }  // namespace
+
+void set_log_sink(std::function<void(const std::string&)> sink) {
+  std::lock_guard lock(g_sink_mu);
+  g_sink = std::move(sink);
+}
 
 void set_log_name(const char* name) {
   g_name = name;
@@ -38,6 +46,8 @@ void log_line(const char* format, ...) {
   // One fprintf per line so lines from different threads do not interleave.
   std::fprintf(stderr, "%s.%03d %s: %s\n", stamp.c_str(), static_cast<int>(ms.count()), g_name,
                msg);
+  std::lock_guard lock(g_sink_mu);
+  if (g_sink) g_sink(msg);
 }
 
 }  // namespace sph::service

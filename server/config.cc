@@ -11,6 +11,9 @@ constexpr const char* kUsage = R"(usage: sph-server [options]
 
   --address HOST:PORT     listen address (default 127.0.0.1:7070; port 0 picks a free port)
   --address-file FILE     write the bound HOST:PORT to FILE once listening
+  --metrics-address HOST:PORT  serve Prometheus metrics at http://HOST:PORT/metrics (default: off;
+                          no token is asked there: bind it where only the scraper reaches)
+  --metrics-address-file FILE  write the bound metrics HOST:PORT to FILE once listening
   --db PATH               SQLite database (default ./sphd.db; local disk, not NFS)
   --results DIR           results root shared with the worker pools (default ./results)
   --lease SECONDS         lease a pool must renew by reporting (default 30)
@@ -54,6 +57,10 @@ std::optional<ServerConfig> parse_server_args(int argc, char** argv, int& exit_c
       c.address = v;
     else if (a == "--address-file")
       c.address_file = v;
+    else if (a == "--metrics-address")
+      c.metrics_address = v;
+    else if (a == "--metrics-address-file")
+      c.metrics_address_file = v;
     else if (a == "--db")
       c.db_path = v;
     else if (a == "--results")

@@ -7,7 +7,9 @@ namespace sph::server {
 
 struct ServerConfig {
   std::string address = "127.0.0.1:7070";
-  std::string address_file;  // written with the bound address (useful with port 0)
+  std::string address_file;          // written with the bound address (useful with port 0)
+  std::string metrics_address;       // empty: no metrics endpoint (server/metrics/)
+  std::string metrics_address_file;  // written with the metrics endpoint's bound address
   std::string db_path = "sphd.db";
   std::string results_dir = "results";
   double lease_seconds = 30;

@@ -36,6 +36,10 @@ int run(const ServerConfig& config) {
         config.address.c_str());
   ServiceHost host(config);
   if (!config.address_file.empty()) write_address_file(config.address_file, host.bound_address());
+  if (!config.metrics_address_file.empty() && !host.metrics_address().empty())
+    write_address_file(config.metrics_address_file, host.metrics_address());
+  if (!host.metrics_address().empty())
+    sph::service::log_line("metrics on http://%s/metrics", host.metrics_address().c_str());
   sph::service::log_line("listening on %s (database %s, results %s, lease %g s%s)",
                          host.bound_address().c_str(), config.db_path.c_str(),
                          host.layout().root().c_str(), config.lease_seconds,

@@ -13,6 +13,7 @@
 #include "common/message_limits.h"
 #include "server/api/malformed_request_interceptor.h"
 #include "server/clock.h"
+#include "server/metrics/rpc_metrics_interceptor.h"
 #include "server/results/results_owner.h"
 
 namespace sph::server {
@@ -59,6 +60,7 @@ ServiceHost::ServiceHost(const ServerConfig& config)
   builder.SetMaxReceiveMessageSize(service::kMaxMessageBytes);  // inlined point sets
   std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors;
   interceptors.push_back(std::make_unique<api::MalformedRequestInterceptorFactory>());
+  interceptors.push_back(std::make_unique<metrics::RpcMetricsInterceptorFactory>(metrics_));
   builder.experimental().SetInterceptorCreators(std::move(interceptors));
   server_ = builder.BuildAndStart();
   if (!server_ || port == 0) throw std::runtime_error("cannot listen on " + config.address);
@@ -66,6 +68,9 @@ ServiceHost::ServiceHost(const ServerConfig& config)
   for (const char* name : {"sph.v1.JobService", "sph.v1.WorkerService"})
     server_->GetHealthCheckService()->SetServingStatus(name, true);
   bound_ = config.address.substr(0, config.address.rfind(':') + 1) + std::to_string(port);
+  if (!config.metrics_address.empty())
+    endpoint_ = std::make_unique<metrics::MetricsEndpoint>(
+        config.metrics_address, [this] { return metrics_.render(store_.counts(), now_unix_ms()); });
   reaper_.emplace(
       store_, std::chrono::milliseconds(std::clamp<std::int64_t>(lease_ms(config) / 4, 50, 1000)));
 }
@@ -82,6 +87,7 @@ void ServiceHost::shutdown(std::chrono::milliseconds grace) {
   server_->GetHealthCheckService()->SetServingStatus(false);
   // Open streams and long polls see this and end at once; then no call outlives the grace.
   feed_.shutdown();
+  if (endpoint_) endpoint_->stop();
   server_->Shutdown(std::chrono::system_clock::now() + grace);
 }
 

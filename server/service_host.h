@@ -17,6 +17,8 @@
 #include "server/config.h"
 #include "server/events/event_feed.h"
 #include "server/lease_reaper.h"
+#include "server/metrics/metrics.h"
+#include "server/metrics/metrics_endpoint.h"
 #include "server/results/result_layout.h"
 #include "server/store/database_lock.h"
 #include "server/store/job_store.h"
@@ -36,6 +38,8 @@ class ServiceHost {
   const std::string& bound_address() const { return bound_; }
   grpc::Server& server() { return *server_; }
   const ResultLayout& layout() const { return layout_; }
+  // The metrics endpoint's HOST:PORT; empty without --metrics-address.
+  std::string metrics_address() const { return endpoint_ ? endpoint_->bound_address() : ""; }
   bool token_required() const { return auth_.enabled(); }
 
   // Health goes NOT_SERVING, open streams and long polls end at once, and calls still running
@@ -53,7 +57,9 @@ class ServiceHost {
   store::JobStore store_;
   api::JobServiceImpl jobs_;
   api::WorkerServiceImpl workers_;
+  metrics::Metrics metrics_;
   std::unique_ptr<grpc::Server> server_;
+  std::unique_ptr<metrics::MetricsEndpoint> endpoint_;
   std::string bound_;
   std::optional<LeaseReaper> reaper_;
   std::atomic<bool> shut_down_{false};

@@ -19,6 +19,7 @@ int cmd_delete(const GlobalOptions& g, ArgScanner args);
 int cmd_fetch(const GlobalOptions& g, ArgScanner args);
 int cmd_health(const GlobalOptions& g, ArgScanner args);
 int cmd_study(const GlobalOptions& g, ArgScanner args);
+int cmd_logs(const GlobalOptions& g, ArgScanner args);
 
 // Loads a case file (inlining point and reference data files) and validates it, printing the
 // problems. Returns kOk or kInvalidCase.

@@ -66,6 +66,26 @@ grpc::Status JobServiceImpl::GetJob(grpc::ServerContext* context, const v1::GetJ
   });
 }
 
+grpc::Status JobServiceImpl::GetJobLogs(grpc::ServerContext* context,
+                                        const v1::GetJobLogsRequest* request,
+                                        v1::GetJobLogsResponse* response) {
+  if (auto s = auth_.check(*context); !s.ok()) return s;
+  std::int64_t id = 0;
+  if (auto s = parse_id(request->job_id(), id); !s.ok()) return s;
+  if (request->attempt() < 0) return invalid_argument("attempt", "must be >= 0 (0: every attempt)");
+  if (request->after_sequence() < 0) return invalid_argument("after_sequence", "must be >= 0");
+  if (request->limit() < 0) return invalid_argument("limit", "must be >= 0");
+  constexpr int kMaxLines = 1000;
+  const int limit = request->limit() == 0 ? kMaxLines : std::min(request->limit(), kMaxLines);
+  return guarded([&] {
+    auto page = store_.logs(id, request->attempt(), request->after_sequence(), limit);
+    for (auto& l : page.lines) *response->add_lines() = std::move(l);
+    response->set_state(page.state);
+    response->set_dropped_lines(page.dropped_lines);
+    return grpc::Status::OK;
+  });
+}
+
 grpc::Status JobServiceImpl::ListJobs(grpc::ServerContext* context,
                                       const v1::ListJobsRequest* request,
                                       v1::ListJobsResponse* response) {

@@ -48,6 +48,8 @@ class JobServiceImpl final : public JobServiceBase {
   grpc::Status DeleteJobFiles(grpc::ServerContext* context,
                               const v1::DeleteJobFilesRequest* request,
                               v1::DeleteJobFilesResponse* response) override;
+  grpc::Status GetJobLogs(grpc::ServerContext* context, const v1::GetJobLogsRequest* request,
+                          v1::GetJobLogsResponse* response) override;
 
  private:
   store::JobStore& store_;

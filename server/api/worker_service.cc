@@ -14,6 +14,9 @@
 
 namespace sph::server::api {
 namespace {
+constexpr int kMaxLogLinesPerCall = 1000;  // service.proto ReportRequest.log
+}  // namespace
+namespace {
 
 // A long poll is capped so that a pool notices a lost server within a reasonable time.
 constexpr double kMaxClaimWaitSeconds = 20;
@@ -88,6 +91,10 @@ grpc::Status WorkerServiceImpl::Report(grpc::ServerContext* context,
   const auto id = store::parse_job_id(request->job_id());
   if (!id)
     return invalid_argument("job_id", "'" + request->job_id() + "' is not a job id (job-<n>)");
+  if (request->log_size() > kMaxLogLinesPerCall)
+    return invalid_argument("log", "at most " + std::to_string(kMaxLogLinesPerCall) +
+                                       " lines per call, not " +
+                                       std::to_string(request->log_size()));
   return guarded([&] {
     // The job is resolved in the database before any path is built from its id.
     const std::string job_id = store_.get(*id, false).id();
@@ -108,6 +115,10 @@ grpc::Status WorkerServiceImpl::Finish(grpc::ServerContext* context,
   const auto id = store::parse_job_id(request->job_id());
   if (!id)
     return invalid_argument("job_id", "'" + request->job_id() + "' is not a job id (job-<n>)");
+  if (request->log_size() > kMaxLogLinesPerCall)
+    return invalid_argument("log", "at most " + std::to_string(kMaxLogLinesPerCall) +
+                                       " lines per call, not " +
+                                       std::to_string(request->log_size()));
   switch (request->outcome()) {
     case v1::ATTEMPT_COMPLETED:
     case v1::ATTEMPT_FAILED:

@@ -411,6 +411,126 @@ v1::Job JobStore::get(std::int64_t id, bool include_case) {
   return read_job(id, include_case, true);
 }
 
+void JobStore::store_log(std::int64_t id, int attempt,
+                         const google::protobuf::RepeatedPtrField<v1::LogLine>& lines,
+                         std::int64_t now_ms) {
+  if (lines.empty()) return;
+  std::int64_t sequence = 0;
+  {
+    auto st = db_.prepare("SELECT COALESCE(MAX(sequence), 0) FROM log_lines WHERE job_id = ?1");
+    st.bind(1, id);
+    st.step();
+    sequence = st.int64(0);
+  }
+  std::int64_t added = 0;
+  for (const auto& l : lines) {
+    std::string text = l.text().substr(0, kMaxLogLineBytes);
+    for (char& c : text)
+      if (c == '\n' || c == '\r') c = ' ';
+    added += static_cast<std::int64_t>(text.size());
+    db_.prepare(
+           "INSERT INTO log_lines (job_id, sequence, attempt, time_ms, text) "
+           "VALUES (?1, ?2, ?3, ?4, ?5)")
+        .bind(1, id)
+        .bind(2, ++sequence)
+        .bind(3, attempt)
+        .bind(4, l.time_unix_ms() > 0 ? l.time_unix_ms() : now_ms)
+        .bind(5, text)
+        .run();
+  }
+  std::int64_t bytes = 0;
+  {
+    auto st = db_.prepare(
+        "UPDATE attempts SET log_bytes = log_bytes + ?3 WHERE job_id = ?1 AND number = ?2 "
+        "RETURNING log_bytes");
+    st.bind(1, id).bind(2, attempt).bind(3, added);
+    if (st.step()) bytes = st.int64(0);
+  }
+  // Over the cap: the oldest lines of this attempt go, so the end (a guard's diagnosis) stays.
+  while (bytes > kMaxLogBytesPerAttempt) {
+    auto st = db_.prepare(
+        "DELETE FROM log_lines WHERE job_id = ?1 AND sequence = (SELECT MIN(sequence) FROM "
+        "log_lines WHERE job_id = ?1 AND attempt = ?2) RETURNING LENGTH(text)");
+    st.bind(1, id).bind(2, attempt);
+    if (!st.step()) break;
+    const std::int64_t freed = st.int64(0);
+    while (st.step()) {
+    }
+    bytes -= freed;
+    db_.prepare(
+           "UPDATE attempts SET log_bytes = log_bytes - ?3, log_dropped = log_dropped + 1 "
+           "WHERE job_id = ?1 AND number = ?2")
+        .bind(1, id)
+        .bind(2, attempt)
+        .bind(3, freed)
+        .run();
+  }
+}
+
+LogPage JobStore::logs(std::int64_t id, int attempt, std::int64_t after, int limit) {
+  std::lock_guard lock(mu_);
+  LogPage page;
+  page.state = load_row(id).state;  // NOT_FOUND for a job that does not exist
+  auto st = db_.prepare(
+      "SELECT attempt, sequence, time_ms, text FROM log_lines WHERE job_id = ?1 AND sequence > "
+      "?2 AND (?3 = 0 OR attempt = ?3) ORDER BY sequence LIMIT ?4");
+  st.bind(1, id).bind(2, after).bind(3, attempt).bind(4, limit);
+  while (st.step()) {
+    v1::LogLine& l = page.lines.emplace_back();
+    l.set_attempt(static_cast<int>(st.int64(0)));
+    l.set_sequence(st.int64(1));
+    l.set_time_unix_ms(st.int64(2));
+    l.set_text(st.text(3));
+  }
+  auto dropped = db_.prepare(
+      "SELECT TOTAL(log_dropped) FROM attempts WHERE job_id = ?1 AND (?2 = 0 OR number = ?2)");
+  dropped.bind(1, id).bind(2, attempt);
+  if (dropped.step()) page.dropped_lines = static_cast<std::int64_t>(dropped.real(0));
+  return page;
+}
+
+StoreCounts JobStore::counts() {
+  std::lock_guard lock(mu_);
+  StoreCounts c;
+  for (auto st : {v1::JOB_STATE_QUEUED, v1::JOB_STATE_RUNNING, v1::JOB_STATE_SUCCEEDED,
+                  v1::JOB_STATE_FAILED, v1::JOB_STATE_CANCELLED})
+    c.jobs_by_state[service::state_name(st)] = 0;
+  {
+    auto st =
+        db_.prepare("SELECT state, COUNT(*), TOTAL(estimated_particles) FROM jobs GROUP BY state");
+    while (st.step()) {
+      c.jobs_by_state[st.text(0)] = st.int64(1);
+      if (st.text(0) == "QUEUED") c.queued_particles = st.real(2);
+    }
+  }
+  for (auto o : {v1::ATTEMPT_OUTCOME_UNSPECIFIED, v1::ATTEMPT_COMPLETED, v1::ATTEMPT_FAILED,
+                 v1::ATTEMPT_CANCELLED, v1::ATTEMPT_INTERRUPTED, v1::ATTEMPT_LEASE_EXPIRED})
+    c.attempts_by_outcome[outcome_name(o)] = 0;
+  {
+    auto st =
+        db_.prepare("SELECT outcome, COUNT(*), TOTAL(number > 1) FROM attempts GROUP BY outcome");
+    while (st.step()) {
+      c.attempts_by_outcome[st.text(0)] = st.int64(1);
+      c.attempts_requeued += static_cast<std::int64_t>(st.real(2));
+    }
+  }
+  {
+    auto st = db_.prepare(
+        "SELECT result, files_deleted_bytes FROM jobs WHERE result IS NOT NULL OR "
+        "files_deleted_ms IS NOT NULL");
+    while (st.step()) {
+      if (!st.is_null(1)) {
+        c.results_deleted_bytes += st.int64(1);
+        continue;
+      }
+      v1::ResultManifest m;
+      if (!m.ParseFromString(st.blob(0))) continue;
+      for (const auto& f : m.files()) c.result_bytes += f.size();
+    }
+  }
+  return c;
+}
+
 JobPage JobStore::list(const std::vector<v1::JobState>& states, int page_size,
                        std::int64_t before) {
   std::lock_guard lock(mu_);
@@ -588,6 +708,7 @@ v1::ReportResponse JobStore::report(const v1::ReportRequest& r, std::int64_t now
       .run();
   for (const auto& cp : r.checkpoints()) store_checkpoint(*id, cp, row.attempt, now_ms);
   if (r.has_progress()) store_progress(*id, r.progress(), now_ms);
+  store_log(*id, row.attempt, r.log(), now_ms);
   tx.commit();
   publish();
   v1::ReportResponse out;
@@ -622,6 +743,7 @@ v1::JobState JobStore::finish(const v1::FinishRequest& r, std::int64_t now_ms) {
   if (r.has_checkpoint() && !r.checkpoint().path().empty())
     store_checkpoint(*id, r.checkpoint(), r.attempt(), now_ms);
   if (r.has_progress()) store_progress(*id, r.progress(), now_ms);
+  store_log(*id, r.attempt(), r.log(), now_ms);
   if (r.files_size() > 0) {
     v1::ResultManifest m;
     m.set_attempt(r.attempt());

@@ -5,6 +5,7 @@
 // passed in (unix milliseconds) so that lease expiry is testable without sleeping. Concurrent
 // submits share transactions (group commit); each returns once its own row is durable.
 #include <cstdint>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <span>
@@ -61,6 +62,27 @@ struct ClaimInfo {
   int ranks = 1;
 };
 
+// What the store holds, for sph-server's metrics (server/metrics/): read from the database at
+// each scrape, so the numbers survive a restart and agree with ListJobs.
+struct StoreCounts {
+  std::map<std::string, std::int64_t> jobs_by_state;        // every state, 0 when none
+  double queued_particles = 0;                              // estimated, over queued jobs
+  std::map<std::string, std::int64_t> attempts_by_outcome;  // RUNNING for unfinished ones
+  std::int64_t attempts_requeued = 0;      // attempts after a job's first: each followed a requeue
+  std::int64_t result_bytes = 0;           // files in the result manifests of jobs not deleted
+  std::int64_t results_deleted_bytes = 0;  // freed by DeleteJobFiles
+};
+
+struct LogPage {
+  std::vector<v1::LogLine> lines;
+  v1::JobState state = v1::JOB_STATE_UNSPECIFIED;
+  std::int64_t dropped_lines = 0;
+};
+
+// Per attempt the store keeps the newest this many bytes of log text (sphctl logs).
+inline constexpr std::int64_t kMaxLogBytesPerAttempt = 256 << 10;
+inline constexpr std::size_t kMaxLogLineBytes = 1024;
+
 struct JobPage {
   std::vector<v1::Job> jobs;
   std::int64_t next_before = 0;  // id to continue below, 0 on the last page
@@ -111,6 +133,10 @@ class JobStore {
   // Whether any job was ever submitted to this database.
   bool has_jobs();
 
+  StoreCounts counts();
+  // Log lines of job `id` with sequence > after (of `attempt` only, when > 0), at most limit.
+  LogPage logs(std::int64_t id, int attempt, std::int64_t after, int limit);
+
   std::vector<v1::JobEvent> events_after(std::int64_t id, std::int64_t after, int limit);
   v1::JobState state(std::int64_t id);
 
@@ -141,6 +167,8 @@ class JobStore {
                    const google::protobuf::Map<std::string, double>* unit_seconds = nullptr);
   void store_checkpoint(std::int64_t id, v1::Checkpoint cp, int attempt, std::int64_t now_ms);
   void store_progress(std::int64_t id, const v1::ProgressInfo& p, std::int64_t now_ms);
+  void store_log(std::int64_t id, int attempt,
+                 const google::protobuf::RepeatedPtrField<v1::LogLine>& lines, std::int64_t now_ms);
   v1::Job read_job(std::int64_t id, bool include_case, bool include_attempts);
   void publish();
 

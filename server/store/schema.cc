@@ -7,7 +7,7 @@ namespace sph::server::store {
 namespace {
 
 // Never edit a migration that has shipped; append a new one.
-constexpr std::array<const char*, 4> kMigrations = {
+constexpr std::array<const char*, 5> kMigrations = {
     // 1: jobs, attempts and the append-only event log.
     R"sql(
 CREATE TABLE jobs (
@@ -77,6 +77,20 @@ ALTER TABLE jobs ADD COLUMN files_deleted_bytes INTEGER;
     R"sql(
 CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL) STRICT;
 INSERT INTO meta (key, value) VALUES ('database_id', lower(hex(randomblob(16))));
+)sql",
+    // 5: the pools' log lines per attempt (sphctl logs), the newest 256 KiB of each attempt.
+    R"sql(
+CREATE TABLE log_lines (
+  job_id INTEGER NOT NULL REFERENCES jobs (id),
+  sequence INTEGER NOT NULL,
+  attempt INTEGER NOT NULL,
+  time_ms INTEGER NOT NULL,
+  text TEXT NOT NULL,
+  PRIMARY KEY (job_id, sequence)
+) STRICT, WITHOUT ROWID;
+CREATE INDEX log_lines_by_attempt ON log_lines (job_id, attempt, sequence);
+ALTER TABLE attempts ADD COLUMN log_bytes INTEGER NOT NULL DEFAULT 0;
+ALTER TABLE attempts ADD COLUMN log_dropped INTEGER NOT NULL DEFAULT 0;
 )sql",
 };
 

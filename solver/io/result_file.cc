@@ -6,6 +6,20 @@
 #include <stdexcept>
 
 namespace sph {
+namespace {
+
+// Writes the connectivity of snapshots of `total` particles unless an earlier snapshot of that
+// count did; this caller writes rows [offset, offset + local). Collective over the file.
+void write_polyvertex(hid_t file, std::uint64_t total, std::uint64_t offset, std::uint64_t local) {
+  const std::string name = polyvertex_dataset(total);
+  if (h5::exists(file, name)) return;
+  h5::open_or_create_group(file, "/xdmf");
+  std::vector<std::int64_t> vertices(local);
+  for (std::uint64_t i = 0; i < local; ++i) vertices[i] = static_cast<std::int64_t>(offset + i);
+  h5::write_rows(file, name, H5T_NATIVE_INT64, total, offset, local, 1, vertices.data());
+}
+
+}  // namespace
 
 ResultFile::ResultFile(const Comm& comm, const std::string& dir)
     : comm_(comm), dir_(dir), h5_(dir + "/result.h5"), xmf_(dir + "/result.xmf") {
@@ -91,6 +105,8 @@ bool ResultFile::carry_over(const std::string& previous, double t,
         } else {
           kept_time.push_back(ts);
           kept_count.push_back(count);
+          // A result written before the connectivity was: result.xmf names it now.
+          write_polyvertex(f, count, 0, count);
         }
       }
       // Rows sampled after t go too. A series keeps as many rows as its group's time column
@@ -195,6 +211,7 @@ void ResultFile::write_snapshot(const ParticleStore<D>& s, double t, std::int64_
     for (const auto& x : extra_)
       h5::write_rows(g, x.column->name(), x.type, total, offset, local, 1, x.column->bytes());
     g.reset();
+    write_polyvertex(f, total, offset, local);
     flush_into(f);
   }
   snapshots_.push_back({name, t, total});

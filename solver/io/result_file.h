@@ -4,6 +4,8 @@
 //   /snapshots/NNNNNN          per output time: position (N x 3), velocity (N x 3), density,
 //                              pressure, mass, id, kind, material; attributes time, step, count
 //   /series/<group>/<name>     time series (first dimension = samples), each group with "time"
+//   /xdmf/polyvertex_<N>       0 .. N-1: the vertex cells result.xmf gives snapshots of N
+//                              particles (solver/io/xdmf.h), one dataset per particle count
 // The file is opened for each write and closed after it, so a killed run leaves a readable
 // file with everything up to its last output. All functions are collective.
 #include <cstdint>

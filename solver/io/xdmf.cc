@@ -7,6 +7,10 @@
 
 namespace sph {
 
+std::string polyvertex_dataset(std::uint64_t count) {
+  return "/xdmf/polyvertex_" + std::to_string(count);
+}
+
 void write_xdmf(const std::string& path, const std::string& h5_name,
                 const std::vector<SnapshotEntry>& snapshots, const std::vector<XdmfField>& fields) {
   const std::string tmp = path + ".tmp";
@@ -24,7 +28,11 @@ void write_xdmf(const std::string& path, const std::string& h5_name,
           << "\" GridType=\"Uniform\">\n"
           << "    <Time Value=\"" << time << "\"/>\n"
           << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
-          << "\" NodesPerElement=\"1\"/>\n"
+          << "\" NodesPerElement=\"1\">\n"
+          << "     <DataItem Dimensions=\"" << n
+          << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << h5_name << ":"
+          << polyvertex_dataset(s.count) << "</DataItem>\n"
+          << "    </Topology>\n"
           << "    <Geometry GeometryType=\"XYZ\">\n"
           << "     <DataItem Dimensions=\"" << n
           << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5_name << ":"

@@ -88,8 +88,8 @@ std::string join_calls(const std::vector<Call>& calls) {
 
 const std::vector<std::string>& method_names() {
   static const std::vector<std::string> names = {
-      "Submit",         "GetJob", "ListJobs", "WatchJob", "CancelJob", "FetchResult",
-      "DeleteJobFiles", "Claim",  "Report",   "Finish",   "Raw"};
+      "Submit",         "GetJob",     "ListJobs", "WatchJob", "CancelJob", "FetchResult",
+      "DeleteJobFiles", "GetJobLogs", "Claim",    "Report",   "Finish",    "Raw"};
   return names;
 }
 
@@ -103,6 +103,7 @@ std::unique_ptr<Message> request_of(const std::string& method) {
   if (method == "CancelJob") return std::make_unique<CancelJobRequest>();
   if (method == "FetchResult") return std::make_unique<FetchResultRequest>();
   if (method == "DeleteJobFiles") return std::make_unique<DeleteJobFilesRequest>();
+  if (method == "GetJobLogs") return std::make_unique<GetJobLogsRequest>();
   if (method == "Claim") return std::make_unique<ClaimRequest>();
   if (method == "Report") return std::make_unique<ReportRequest>();
   if (method == "Finish") return std::make_unique<FinishRequest>();
@@ -195,6 +196,10 @@ grpc::Status run_call(Server& s, const Call& call) {
   if (call.method == "DeleteJobFiles") {
     DeleteJobFilesResponse r;
     return s.jobs->DeleteJobFiles(ctx.get(), static_cast<DeleteJobFilesRequest&>(*request), &r);
+  }
+  if (call.method == "GetJobLogs") {
+    GetJobLogsResponse r;
+    return s.jobs->GetJobLogs(ctx.get(), static_cast<GetJobLogsRequest&>(*request), &r);
   }
   if (call.method == "WatchJob") {
     auto c = context(200ms);

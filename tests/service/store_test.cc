@@ -573,15 +573,18 @@ TEST_F(StoreTest, MigratesAVersion1DatabaseAndKeepsStudiesWithTheirJobs) {
     raw.exec("ALTER TABLE jobs DROP COLUMN files_deleted_ms");
     raw.exec("ALTER TABLE jobs DROP COLUMN files_deleted_bytes");
     raw.exec("DROP TABLE meta");
+    raw.exec("DROP TABLE log_lines");
+    raw.exec("ALTER TABLE attempts DROP COLUMN log_bytes");
+    raw.exec("ALTER TABLE attempts DROP COLUMN log_dropped");
     raw.exec("PRAGMA user_version = 1");
   }
   open();  // migrates to the current version
-  EXPECT_EQ(current_schema_version(), 4);
+  EXPECT_EQ(current_schema_version(), 5);
   {
     Database raw(db());
     auto st = raw.prepare("PRAGMA user_version");
     st.step();
-    EXPECT_EQ(st.int64(0), 4);
+    EXPECT_EQ(st.int64(0), 5);
   }
   EXPECT_EQ(store_->database_id().size(), 32u);
   EXPECT_TRUE(store_->has_jobs());
@@ -669,6 +672,72 @@ TEST_F(StoreTest, ListsNewestFirstInPagesAndByState) {
   const auto running = store_->list({v1::JOB_STATE_RUNNING}, 10, 0);
   ASSERT_EQ(running.jobs.size(), 1u);
   EXPECT_EQ(running.jobs[0].id(), "job-1");
+}
+
+}  // namespace
+}  // namespace sph::server::store
+
+namespace sph::server::store {
+namespace {
+
+// sphctl logs: lines in order with sequences across attempts, filtered by attempt, and the
+// newest kMaxLogBytesPerAttempt bytes of each attempt kept (the end holds the diagnosis).
+TEST_F(StoreTest, LogLinesAreKeptPerAttemptUpToTheCap) {
+  const auto id = submit("a");
+  const auto c1 = claim(kT0);
+  auto r = report_for(c1);
+  for (const char* text : {"first", "second\nwith a newline"}) r.add_log()->set_text(text);
+  store_->report(r, kT0 + 10);
+  // The pool is lost; the second attempt writes far more than the cap.
+  store_->expire_leases(kT0 + 100000);
+  const auto c2 = claim(kT0 + 100001, "pool-b");
+  ASSERT_EQ(c2.attempt(), 2);
+  const std::string filler(200, 'x');
+  int sent = 0;
+  for (int call = 0; call < 3; ++call) {
+    auto more = report_for(c2);
+    for (int i = 0; i < 1000; ++i) more.add_log()->set_text(std::to_string(sent++) + " " + filler);
+    store_->report(more, kT0 + 100002 + call);
+  }
+  auto fin = finish_for(c2, v1::ATTEMPT_FAILED);
+  fin.set_message("diagnosis");
+  fin.add_log()->set_text("the diagnosis, last");
+  store_->finish(fin, kT0 + 100010);
+
+  const auto first = store_->logs(id, 1, 0, 1000);
+  ASSERT_EQ(first.lines.size(), 2u);
+  EXPECT_EQ(first.lines[0].text(), "first");
+  EXPECT_EQ(first.lines[1].text(), "second with a newline");
+  EXPECT_EQ(first.lines[0].sequence(), 1);
+  EXPECT_EQ(first.dropped_lines, 0);
+  EXPECT_EQ(first.state, v1::JOB_STATE_FAILED);
+
+  std::int64_t bytes = 0, count = 0, after = 0, last_seq = 0;
+  std::string last;
+  while (true) {
+    const auto page = store_->logs(id, 2, after, 1000);
+    if (page.lines.empty()) break;
+    for (const auto& l : page.lines) {
+      EXPECT_EQ(l.attempt(), 2);
+      EXPECT_GT(l.sequence(), last_seq);
+      last_seq = l.sequence();
+      bytes += static_cast<std::int64_t>(l.text().size());
+      ++count;
+      last = l.text();
+    }
+    after = page.lines.back().sequence();
+  }
+  const auto dropped = store_->logs(id, 2, 0, 1).dropped_lines;
+  std::printf("attempt 2: %lld lines, %lld bytes kept, %lld dropped of %d + 1 sent\n",
+              static_cast<long long>(count), static_cast<long long>(bytes),
+              static_cast<long long>(dropped), sent);
+  EXPECT_LE(bytes, kMaxLogBytesPerAttempt);
+  EXPECT_GT(bytes, kMaxLogBytesPerAttempt - 300);
+  EXPECT_EQ(count + dropped, sent + 1);
+  EXPECT_EQ(last, "the diagnosis, last");
+  // Attempt 1's lines were not touched by attempt 2's cap; 0 lists both.
+  EXPECT_EQ(store_->logs(id, 0, 0, 2).lines[0].text(), "first");
+  EXPECT_THROW(store_->logs(id + 7, 0, 0, 10), JobError);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "worker/pool/attempt_reporter.h"
 
+#include <cstdio>
+
 #include "common/log.h"
 
 namespace sph::worker::pool {
@@ -42,6 +44,53 @@ void AttemptReporter::on_progress(const Progress& p) {
   on_progress(to_proto(p));
 }
 
+namespace {
+// The lines a pool holds for the server while it cannot report (ReportRequest.log's limit).
+constexpr std::size_t kMaxPendingLogLines = 1000;
+
+std::int64_t unix_ms() {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+std::string progress_line(const v1::ProgressInfo& p) {
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "progress step %lld t = %.6g of %.6g s, dt %.3g s, %lld particles, %.3g "
+                "particle-steps/s, %.1f s wall",
+                static_cast<long long>(p.step()), p.time(), p.end_time(), p.dt(),
+                static_cast<long long>(p.particles()), p.particle_steps_per_second(),
+                p.wall_seconds());
+  std::string out = buf;
+  if (p.has_study()) {
+    std::snprintf(buf, sizeof buf, " (study level %d of %d, dx = %.6g)", p.study().level(),
+                  p.study().levels(), p.study().dx());
+    out += buf;
+  }
+  return out;
+}
+}  // namespace
+
+void AttemptReporter::log(const std::string& text) {
+  std::lock_guard lock(mu_);
+  if (pending_log_.size() >= kMaxPendingLogLines) {
+    pending_log_.erase(pending_log_.begin());  // the newest lines matter most (a diagnosis)
+    ++log_dropped_;
+  }
+  v1::LogLine& l = pending_log_.emplace_back();
+  l.set_attempt(attempt_);
+  l.set_time_unix_ms(unix_ms());
+  l.set_text(text);
+}
+
+std::vector<v1::LogLine> AttemptReporter::take_log() {
+  std::lock_guard lock(mu_);
+  std::vector<v1::LogLine> out;
+  out.swap(pending_log_);
+  return out;
+}
+
 void AttemptReporter::on_progress(const v1::ProgressInfo& p) {
   std::lock_guard lock(mu_);
   progress_ = p;
@@ -82,6 +131,24 @@ void AttemptReporter::stop() {
   }
   cv_.notify_all();
   if (thread_.joinable()) thread_.join();
+}
+
+void AttemptReporter::log_progress() {
+  std::lock_guard lock(mu_);
+  if (progress_) log_progress_locked(*progress_);
+}
+
+void AttemptReporter::log_progress_locked(const v1::ProgressInfo& p) {
+  if (p.step() == logged_step_) return;
+  logged_step_ = p.step();
+  if (pending_log_.size() >= kMaxPendingLogLines) {
+    pending_log_.erase(pending_log_.begin());
+    ++log_dropped_;
+  }
+  v1::LogLine& l = pending_log_.emplace_back();
+  l.set_attempt(attempt_);
+  l.set_time_unix_ms(unix_ms());
+  l.set_text(progress_line(p));
 }
 
 void AttemptReporter::finish_acknowledged(const std::string& path) {
@@ -131,6 +198,9 @@ void AttemptReporter::send() {
     if (progress_ && !progress_sent_) *req.mutable_progress() = *progress_;
     for (const auto& cp : pending_checkpoints_) *req.add_checkpoints() = cp;
     urgent_ = false;
+    // One progress line per report, queued like any other line.
+    if (req.has_progress()) log_progress_locked(req.progress());
+    for (const auto& l : pending_log_) *req.add_log() = l;
   }
   v1::ReportResponse resp;
   const grpc::Status status = link_.report(req, &resp);
@@ -142,6 +212,12 @@ void AttemptReporter::send() {
                                  pending_checkpoints_.begin() + req.checkpoints_size());
       if (req.has_progress() && progress_ && progress_->step() == req.progress().step())
         progress_sent_ = true;
+      // Lines logged meanwhile stay pending. (Lines dropped while the server was away were
+      // the oldest; the count of those is in the pool's own log.)
+      const auto sent =
+          std::min<std::size_t>(pending_log_.size(), static_cast<std::size_t>(req.log_size()));
+      pending_log_.erase(pending_log_.begin(),
+                         pending_log_.begin() + static_cast<std::ptrdiff_t>(sent));
     }
     for (const auto& cp : req.checkpoints()) pruner_.acknowledged(cp.path());
   }

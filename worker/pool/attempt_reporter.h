@@ -38,6 +38,14 @@ class AttemptReporter {
   void on_progress(const Progress& p);
   void on_progress(const v1::ProgressInfo& p);  // e.g. with a study's ladder progress
   void on_checkpoint(const std::string& path, std::int64_t step, double time);
+  // A line for the attempt's log on the server (sphctl logs): sent with the next report, or
+  // with the Finish (take_log). Any thread.
+  void log(const std::string& text);
+  // Adds a line for the newest progress unless one was logged for its step: a run shorter
+  // than a report interval ends with one too.
+  void log_progress();
+  // After stop(): the lines no report carried, for the Finish.
+  std::vector<v1::LogLine> take_log();
   // Polled by the solver once per step; doubles as its heartbeat.
   bool should_stop();
 
@@ -59,7 +67,8 @@ class AttemptReporter {
 
  private:
   void run();
-  void send();  // one Report with whatever is pending
+  void send();                                          // one Report with whatever is pending
+  void log_progress_locked(const v1::ProgressInfo& p);  // mu_ held
 
   ServerLink& link_;
   const std::string job_id_;
@@ -76,6 +85,9 @@ class AttemptReporter {
   bool progress_sent_ = true;
   std::vector<v1::Checkpoint> pending_checkpoints_;
   std::optional<v1::Checkpoint> last_checkpoint_;
+  std::vector<v1::LogLine> pending_log_;
+  std::int64_t logged_step_ = -1;  // step of the newest progress line
+  std::int64_t log_dropped_ = 0;   // lines dropped while the server was away too long
   std::atomic<bool> cancel_requested_{false};
   std::atomic<bool> lost_{false};
   bool server_away_ = false;  // only the reporting thread uses it

@@ -214,9 +214,19 @@ void run_attempt(const v1::ClaimResponse& claim, const PoolOptions& o, ServerLin
   std::unique_ptr<AttemptReporter> reporter;
   const double report_interval =
       claim.report_interval_seconds() > 0 ? claim.report_interval_seconds() : 1.0;
-  if (rank == 0)
+  if (rank == 0) {
     reporter = std::make_unique<AttemptReporter>(*link, claim.job_id(), claim.attempt(),
                                                  report_interval, o.stall_timeout_seconds);
+    // The attempt's log lines go to the server too (sphctl logs): this pool's log lines from
+    // here to the Finish, and a progress line with each report.
+    reporter->log(c.name() + ", output " + claim.output_dir() +
+                  (claim.resume_from().empty() ? "" : ", resuming from " + claim.resume_from()));
+    service::set_log_sink([r = reporter.get()](const std::string& line) { r->log(line); });
+  }
+  // Removes the sink before the reporter goes, however this function is left.
+  struct LogSinkReset {
+    ~LogSinkReset() { service::set_log_sink({}); }
+  } log_sink_reset;
 
   RunOptions opt;
   opt.output_dir = claim.output_dir();
@@ -255,6 +265,7 @@ void run_attempt(const v1::ClaimResponse& claim, const PoolOptions& o, ServerLin
 
   // The reporter renews the lease until the Finish is ready: hashing large result files can
   // take longer than a lease, and an expired lease would throw the finished run away.
+  reporter->log_progress();
   service::log_line("%s attempt %d: %s%s%s", claim.job_id().c_str(), claim.attempt(),
                     summary(r, ranks).c_str(), r.message.empty() ? "" : ": ", r.message.c_str());
   finish.set_outcome(outcome_for(r.status));
@@ -267,7 +278,9 @@ void run_attempt(const v1::ClaimResponse& claim, const PoolOptions& o, ServerLin
     finish.set_message(std::string("cannot read the result files: ") + e.what());
   }
   reporter->stop();
+  service::set_log_sink({});
   if (reporter->lost()) return;  // another attempt owns the job now
+  for (auto& l : reporter->take_log()) *finish.add_log() = std::move(l);
   if (auto p = reporter->last_progress()) *finish.mutable_progress() = *p;
   if (auto cp = reporter->last_checkpoint()) *finish.mutable_checkpoint() = *cp;
   if (!r.last_checkpoint.empty() && finish.checkpoint().path() != r.last_checkpoint) {
