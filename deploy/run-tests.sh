@@ -12,6 +12,8 @@ cmake --build "$build" -j"$(nproc)"
 # Root may run mpirun in containers (shared/NOTES.md).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
-ctest --test-dir "$build" --output-on-failure --timeout 900
+# Unit and validation tests run one per core; the MPI, service, Python and ParaView tests
+# (several processes each, servers with leases) run alone (RUN_SERIAL in their CMakeLists).
+ctest --test-dir "$build" --output-on-failure --timeout 900 -j"$(nproc)"
 # The fuzz targets for a bounded time (tests/fuzz/README.md): clang, libFuzzer, ASan, UBSan.
 "$root/tests/fuzz/run.sh" "${SPHD_FUZZ_SECONDS:-60}" "$build-fuzz"
