@@ -33,6 +33,12 @@ class CollectErrors : public google::protobuf::io::ErrorCollector {
   bool too_deep = false;
 };
 
+// A data file named in a case: relative paths are relative to the case file's folder.
+std::filesystem::path beside_case(const std::string& base, const std::string& file) {
+  std::filesystem::path p(file);
+  return p.is_relative() ? std::filesystem::path(base) / p : p;
+}
+
 // Reads "x y [z]" lines, at most `limit` points (the smaller of the per-file and the case's
 // remaining budget; `limit_text` says which), so that a huge file is refused, not read whole.
 std::vector<v1::Vec3> read_point_file(const std::string& path, const std::string& field, int limit,
@@ -93,8 +99,7 @@ void inline_shape(v1::Shape& s, const std::string& base, const std::string& fiel
     case v1::Shape::kPoints: {
       auto* ps = s.mutable_points();
       if (!ps->file().empty()) {
-        std::filesystem::path p(ps->file());
-        if (p.is_relative()) p = std::filesystem::path(base) / p;
+        const std::filesystem::path p = beside_case(base, ps->file());
         const int left = std::max(0, kMaxPointsPerCase - budget.used);
         const bool per_file = kMaxPointsPerFile <= left;
         const std::string limit_text =
@@ -113,8 +118,7 @@ void inline_shape(v1::Shape& s, const std::string& base, const std::string& fiel
     case v1::Shape::kPolygon: {
       auto* poly = s.mutable_polygon();
       if (!poly->file().empty()) {
-        std::filesystem::path p(poly->file());
-        if (p.is_relative()) p = std::filesystem::path(base) / p;
+        const std::filesystem::path p = beside_case(base, poly->file());
         const int left = std::max(0, kMaxPolygonVertices - budget.polygon_vertices);
         auto vertices =
             read_point_file(p.string(), field + ".polygon.file", left,
@@ -130,8 +134,7 @@ void inline_shape(v1::Shape& s, const std::string& base, const std::string& fiel
     case v1::Shape::kMesh: {
       auto* mesh = s.mutable_mesh();
       if (!mesh->file().empty()) {
-        std::filesystem::path p(mesh->file());
-        if (p.is_relative()) p = std::filesystem::path(base) / p;
+        const std::filesystem::path p = beside_case(base, mesh->file());
         const auto left = static_cast<std::size_t>(
             std::max<std::int64_t>(0, kMaxMeshTriangles - budget.mesh_triangles));
         try {

@@ -72,7 +72,7 @@ void read_ascii(std::ifstream& in, const std::string& path, std::size_t max_tria
                        std::to_string(out.triangles_size() / 3) + ")");
       if (out.triangles_size() / 3 >= static_cast<int>(max_triangles) && corners == 0)
         fail(path, "has more than " + std::to_string(max_triangles) +
-                       " triangles; the limit is that many per case");
+                       " triangles, all the case's limit of mesh triangles leaves for it");
       out.add_triangles(weld.index(x, y, z));
       corners = (corners + 1) % 3;
     } else if (word == "endloop" && corners != 0) {
@@ -114,7 +114,8 @@ void read_stl(const std::string& path, std::size_t max_triangles, v1::TriangleMe
   if (in && size == 84 + 50 * static_cast<std::uint64_t>(count)) {
     if (count > max_triangles)
       fail(path, "has " + std::to_string(count) + " triangles; the limit is " +
-                     std::to_string(max_triangles) + " per case");
+                     std::to_string(max_triangles) +
+                     " (what the case's limit of mesh triangles leaves for it)");
     if (count == 0) fail(path, "holds no triangles");
     read_binary(in, path, count, out);
     return;

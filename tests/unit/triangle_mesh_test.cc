@@ -347,6 +347,41 @@ TEST(TriangleMesh, CaseWallFromStlFileInlinesAndValidates) {
   }
 }
 
+// Inline mesh fields out of range, each refused with the field named.
+TEST(TriangleMesh, BadInlineMeshFieldsAreNamed) {
+  const auto errors_for = [](int dim, const std::string& mesh) {
+    const std::string text =
+        "name: \"m\" dimension: " + std::to_string(dim) +
+        " dx: 0.1\n"
+        "domain { lo { x: -1 y: -1 z: -1 } hi { x: 2 y: 2 z: 2 } }\n"
+        "materials { name: \"water\" density: 1000 eos { kind: TAIT sound_speed: 10 } }\n"
+        "fluids { name: \"w\" material: \"water\" shape { box { lo { x: 0 y: 0 z: 0 } hi { "
+        "x: 0.5 y: 0.5 z: 0.5 } } } }\n"
+        "walls { name: \"part\" shape { mesh { " +
+        mesh + " } } }\ntime { end_time: 1 }\n";
+    std::map<std::string, std::string> out;
+    for (const auto& e : validate_case(parse_case_text(text))) out[e.field] = e.message;
+    return out;
+  };
+  // One triangle of the unit cube's corners: valid fields, but not a closed surface.
+  const std::string tri = "vertices: [0, 0, 0, 1, 0, 0, 0, 1, 0] triangles: [0, 1, 2]";
+  auto e = errors_for(3, tri + " scale: -1");
+  EXPECT_NE(e["walls[0].shape.mesh.scale"].find("> 0"), std::string::npos);
+  e = errors_for(3, "vertices: [0, 0, 0, 1, 0, 0, 0, 1, 0] triangles: [0, 1, 3]");
+  EXPECT_NE(e["walls[0].shape.mesh.triangles[2]"].find("not below the 3 vertices"),
+            std::string::npos);
+  e = errors_for(3, "vertices: [0, 0, 0, 1, 0] triangles: [0, 1, 2]");
+  EXPECT_NE(e["walls[0].shape.mesh.vertices"].find("three coordinates"), std::string::npos);
+  e = errors_for(3, tri);
+  EXPECT_NE(e["walls[0].shape.mesh"].find("3 edges belong to one triangle only"),
+            std::string::npos);
+  e = errors_for(2, tri);
+  EXPECT_NE(e["walls[0].shape.mesh"].find("only in 3D"), std::string::npos);
+  e = errors_for(3, "file: \"part.stl\"");
+  EXPECT_NE(e["walls[0].shape.mesh.file"].find("inlined"), std::string::npos);
+  for (const auto& [f, m] : e) std::printf("  %s: %s\n", f.c_str(), m.c_str());
+}
+
 // A 2D wall section from a polyline file, inlined into polygon.vertices.
 TEST(GeometryFiles, PolygonFromFileInlinesAndFills) {
   std::ofstream(temp("section.xy")) << "# an L-shaped section\n0 0\n2 0\n2 1\n1 1\n1 2\n0 2\n";
