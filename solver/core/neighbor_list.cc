@@ -7,6 +7,21 @@
 
 namespace sph {
 
+namespace {
+
+// At least n entries, with 1/8 spare when it grows (reserved first: resize() alone would
+// double the capacity); never shrunk, so that sizes changing from step to step neither
+// reallocate nor fill.
+template <class T>
+void grow_to(std::vector<T>& v, std::size_t n) {
+  if (v.size() >= n) return;
+  const std::size_t c = std::max(n, v.size() + v.size() / 8);
+  v.reserve(c);
+  v.resize(c);
+}
+
+}  // namespace
+
 template <int D>
 void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
                             const CellBox<D>& box, double rc, const ContactQuery* contact,
@@ -53,7 +68,11 @@ void NeighborList<D>::reclassify_candidates(const ParticleStore<D>& s, const Con
   const std::uint32_t* slot = slot_.data();
   std::uint32_t* cand = cand_.nbr.data();
   cand_.contact_nbr.clear();
-  cand_.contact_start[0] = 0;
+  // Contact candidates are listed only for a contact query (no room taken without one).
+  if (contact)
+    cand_.contact_start.assign(owned + 1, 0);
+  else
+    cand_.contact_start.clear();
   for (std::size_t i = 0; i < owned; ++i) {
     // Both parts of the list are in canonical order: merged, they are the whole list in that
     // order, which is then split again by the kinds now (fluid first).
@@ -85,23 +104,26 @@ void NeighborList<D>::reclassify_candidates(const ParticleStore<D>& s, const Con
           cand_.contact_nbr.push_back(j);
       }
     }
-    cand_.contact_start[i + 1] = static_cast<std::uint32_t>(cand_.contact_nbr.size());
+    if (contact) cand_.contact_start[i + 1] = static_cast<std::uint32_t>(cand_.contact_nbr.size());
   }
 }
 
 template <int D>
-void NeighborList<D>::refine(const ParticleStore<D>& s, double rc, double contact_range,
-                             double* r2_out) {
-  if (r2_out)
-    refine_lists<true>(s, rc, contact_range, r2_out);
-  else
-    refine_lists<false>(s, rc, contact_range, nullptr);
+void NeighborList<D>::refine(const ParticleStore<D>& s, double rc, double contact_range) {
+  refine_lists<double, false>(s, rc, contact_range, nullptr);
 }
 
 template <int D>
-template <bool kSquaredDistances>
+template <class Real>
+void NeighborList<D>::refine(const ParticleStore<D>& s, double rc, double contact_range,
+                             std::vector<Real>& r2) {
+  refine_lists<Real, true>(s, rc, contact_range, &r2);
+}
+
+template <int D>
+template <class Real, bool kSquaredDistances>
 void NeighborList<D>::refine_lists(const ParticleStore<D>& s, double rc, double contact_range,
-                                   double* r2_out) {
+                                   std::vector<Real>* r2) {
   ++generation_;
   const std::size_t owned = s.owned();
   if (cand_.start.size() != owned + 1)
@@ -109,42 +131,61 @@ void NeighborList<D>::refine_lists(const ParticleStore<D>& s, double rc, double 
   Lists& o = cur_;
   o.start.resize(owned + 1);
   o.fluid_end.resize(owned);
-  o.contact_start.resize(owned + 1);
-  if (o.nbr.size() < cand_.pairs) o.nbr.resize(cand_.pairs + cand_.pairs / 4);
+  const bool contacts = !cand_.contact_start.empty();
+  if (contacts)
+    o.contact_start.resize(owned + 1);
+  else
+    o.contact_start.clear();
   if (o.contact_nbr.size() < cand_.contact_nbr.size())
     o.contact_nbr.resize(cand_.contact_nbr.size());
+  // The pairs kept last time, for a start (the first refinement after a search grows them).
+  grow_to(o.nbr, std::max(o.pairs, cand_.pairs / 2));
+  if constexpr (kSquaredDistances) grow_to(*r2, o.nbr.size());
   const Vec<D>* x = s.x.data();
   const double rc2 = rc * rc, cr2 = contact_range * contact_range;
   const std::uint32_t* cand = cand_.nbr.data();
   std::uint32_t* out = o.nbr.data();
+  Real* r2_out = kSquaredDistances ? r2->data() : nullptr;
   std::size_t m = 0, mc = 0;
   double min_contact = std::numeric_limits<double>::infinity();
   o.start[0] = 0;
-  o.contact_start[0] = 0;
+  if (contacts) o.contact_start[0] = 0;
   for (std::size_t i = 0; i < owned; ++i) {
     const Vec<D> xi = x[i];
     // Branch-free, as in the search: every candidate is written, the count advances for the
     // pairs kept. The fluid neighbours stay first.
     const std::uint32_t f = cand_.fluid_end[i], e = cand_.start[i + 1];
+    // Room for all of i's candidates past the pairs kept so far: the lists (and the squared
+    // distances) grow with the pairs kept, not with the candidates, which a Verlet skin makes
+    // up to twice as many (a lattice at rest, h = dx).
+    if (o.nbr.size() < m + (e - cand_.start[i])) {
+      grow_to(o.nbr, m + (e - cand_.start[i]));
+      out = o.nbr.data();
+      if constexpr (kSquaredDistances) {
+        grow_to(*r2, o.nbr.size());
+        r2_out = r2->data();
+      }
+    }
     // The squared distance, as the pair kernel would compute it (PairKernel::distances), is
     // written with the index and kept with it.
     const auto test = [&](std::uint32_t q) {
       const std::uint32_t j = cand[q];
       const double d2 = (xi - x[j]).squaredNorm();
       out[m] = j;
-      if constexpr (kSquaredDistances) r2_out[m] = d2;
+      if constexpr (kSquaredDistances) r2_out[m] = static_cast<Real>(d2);
       m += static_cast<std::size_t>(d2 < rc2);
     };
     for (std::uint32_t q = cand_.start[i]; q < f; ++q) test(q);
     o.fluid_end[i] = static_cast<std::uint32_t>(m);
     for (std::uint32_t q = f; q < e; ++q) test(q);
     o.start[i + 1] = static_cast<std::uint32_t>(m);
+    if (!contacts) continue;
     for (std::uint32_t q = cand_.contact_start[i]; q < cand_.contact_start[i + 1]; ++q) {
       const std::uint32_t j = cand_.contact_nbr[q];
-      const double r2 = (xi - x[j]).squaredNorm();
-      if (r2 < cr2) {
+      const double d2c = (xi - x[j]).squaredNorm();
+      if (d2c < cr2) {
         o.contact_nbr[mc++] = j;
-        min_contact = std::min(min_contact, std::sqrt(r2));
+        min_contact = std::min(min_contact, std::sqrt(d2c));
       }
     }
     o.contact_start[i + 1] = static_cast<std::uint32_t>(mc);
@@ -244,7 +285,10 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
   L.fluid_end.resize(owned);
   L.pairs = 0;
   L.start[0] = 0;
-  L.contact_start.assign(owned + 1, 0);
+  if (contact)
+    L.contact_start.assign(owned + 1, 0);
+  else
+    L.contact_start.clear();
   L.contact_nbr.clear();
   L.min_contact = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < owned; ++i) {
@@ -269,7 +313,7 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
           any = (cell_kinds_[static_cast<std::size_t>(ci + rows[k] + d)] & wanted) != 0;
       if (!any) {
         L.start[i + 1] = L.fluid_end[i] = static_cast<std::uint32_t>(L.pairs);
-        L.contact_start[i + 1] = static_cast<std::uint32_t>(L.contact_nbr.size());
+        if (contact) L.contact_start[i + 1] = static_cast<std::uint32_t>(L.contact_nbr.size());
         continue;
       }
     }
@@ -316,8 +360,7 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
     }
     if (L.pairs + candidates > std::numeric_limits<std::uint32_t>::max())
       throw std::runtime_error("over 2^32 neighbour pairs on one rank: use more ranks");
-    if (L.nbr.size() < L.pairs + candidates)
-      L.nbr.resize(std::max(L.nbr.size() + L.nbr.size() / 4, L.pairs + candidates));  // 25% spare
+    grow_to(L.nbr, L.pairs + candidates);
     if (others_.size() < candidates) others_.resize(candidates);
     // Branch-free appends: every candidate is written and the counts advance only for the
     // neighbours kept (a data-dependent branch here mispredicts often once the particles are
@@ -356,7 +399,7 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
     std::copy(other, other + o, out + m);
     L.pairs += o;
     L.start[i + 1] = static_cast<std::uint32_t>(L.pairs);
-    L.contact_start[i + 1] = static_cast<std::uint32_t>(L.contact_nbr.size());
+    if (contact) L.contact_start[i + 1] = static_cast<std::uint32_t>(L.contact_nbr.size());
   }
 }
 
@@ -381,6 +424,12 @@ std::vector<std::uint32_t> owned_cell_order(const ParticleStore<D>& s, const Cel
 
 template class NeighborList<2>;
 template class NeighborList<3>;
+template void NeighborList<2>::refine(const ParticleStore<2>&, double, double,
+                                      std::vector<double>&);
+template void NeighborList<3>::refine(const ParticleStore<3>&, double, double,
+                                      std::vector<double>&);
+template void NeighborList<2>::refine(const ParticleStore<2>&, double, double, std::vector<float>&);
+template void NeighborList<3>::refine(const ParticleStore<3>&, double, double, std::vector<float>&);
 template std::vector<std::uint32_t> owned_cell_order<2>(const ParticleStore<2>&, const CellGrid<2>&,
                                                         const CellBox<2>&);
 template std::vector<std::uint32_t> owned_cell_order<3>(const ParticleStore<3>&, const CellGrid<3>&,

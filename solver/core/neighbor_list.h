@@ -42,10 +42,13 @@ class NeighborList {
   // The lists of the current positions: the candidates within rc (contacts within
   // contact_range), in the candidates' order. Exact while no particle has moved half the skin
   // since build_candidates(), and the particles (owned and ghosts) are the same, in the same
-  // rows. With r2_out (room for candidate_pairs() values, e.g. PairKernel::squared_distances_for)
-  // it also writes the squared distance of every pair kept, parallel to the lists, as it tests
-  // them, so that the pair kernel need not gather the positions of every pair again.
-  void refine(const ParticleStore<D>& s, double rc, double contact_range, double* r2_out = nullptr);
+  // rows.
+  void refine(const ParticleStore<D>& s, double rc, double contact_range);
+  // As refine(), and writes the squared distance of every pair kept into r2, parallel to the
+  // lists (grown with them), as it tests them, so that the pair kernel need not gather the
+  // positions of every pair again (PairKernel::refine). Real is double or float.
+  template <class Real>
+  void refine(const ParticleStore<D>& s, double rc, double contact_range, std::vector<Real>& r2);
   // After particles changed kind between fluid and rigid, or body, where they stand (a phase
   // transition, Fuchs 2021 eq. 29; ghosts refreshed): sorts every candidate list again into
   // its fluid and other neighbours by the kinds now and lists the contact candidates of the
@@ -73,10 +76,11 @@ class NeighborList {
   std::size_t candidate_pairs() const { return cand_.pairs; }
   // Contact candidates of owned rigid particle i (empty without a ContactQuery).
   const std::uint32_t* contacts_begin(std::size_t i) const {
-    return cur_.contact_nbr.data() + cur_.contact_start[i];
+    return cur_.contact_start.empty() ? nullptr : cur_.contact_nbr.data() + cur_.contact_start[i];
   }
   const std::uint32_t* contacts_end(std::size_t i) const {
-    return cur_.contact_nbr.data() + cur_.contact_start[i + 1];
+    return cur_.contact_start.empty() ? nullptr
+                                      : cur_.contact_nbr.data() + cur_.contact_start[i + 1];
   }
   std::size_t contact_pairs() const {
     return cur_.contact_start.empty() ? 0 : cur_.contact_start.back();
@@ -124,8 +128,9 @@ class NeighborList {
              sizeof(std::uint32_t);
     }
   };
-  template <bool kSquaredDistances>
-  void refine_lists(const ParticleStore<D>& s, double rc, double contact_range, double* r2_out);
+  template <class Real, bool kSquaredDistances>
+  void refine_lists(const ParticleStore<D>& s, double rc, double contact_range,
+                    std::vector<Real>* r2);
   void build_into(Lists& out, const ParticleStore<D>& s, const CellGrid<D>& grid,
                   const CellBox<D>& box, double rc, const ContactQuery* contact, bool rigid_all);
 

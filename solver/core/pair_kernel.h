@@ -7,11 +7,18 @@
 // branches, again for the same pair. The values are evaluated in loops without branches that
 // vectorise (K::evaluate), and equal those the passes computed before to the bit
 // (r = |x_i - x_j|, K::evaluate = W and dW), so results are unchanged.
-// Two ways to keep them:
-//  - kTable: every pair evaluated once when the list is built (24 bytes a pair); the faster
-//    of the two (docs/effects.md, "Design measurements").
+// Three ways to keep them:
+//  - kCompact (the default): every pair evaluated once when the list is built and r, W and
+//    dW/dr kept in single precision (12 bytes a pair); each pass gets a particle's values
+//    widened to double. Each value carries a relative rounding of at most 2^-24 (6e-8; with
+//    Verlet lists W and dW/dr are those of the distance from the single-precision square),
+//    far below the discretisation error and the same on every rank count. Half the storage
+//    of kTable at about its speed (docs/effects.md).
+//  - kTable: r, W and dW/dr kept in double (24 bytes a pair), the values the passes computed
+//    before the table existed, to the bit.
 //  - kStream: a particle's pairs evaluated into a scratch buffer each time a pass asks for
-//    them; no storage, each pass gathers and evaluates again.
+//    them; no storage, each pass gathers and evaluates again. The same bits as kTable.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -32,33 +39,49 @@ struct PairValues {
 template <int D>
 class PairKernel {
  public:
-  enum class Storage { kTable, kStream };
-  explicit PairKernel(Storage storage = Storage::kTable) : storage_(storage) {}
+  enum class Storage { kCompact, kTable, kStream };
+  explicit PairKernel(Storage storage = Storage::kCompact) : storage_(storage) {}
 
   // Binds the table to nl as just built from the positions of s (which the passes then use
-  // unchanged) and, with kTable, evaluates every pair of the owned particles' lists.
+  // unchanged) and, with kTable or kCompact, evaluates every pair of the owned particles'
+  // lists.
   template <class K>
   void prepare(const ParticleStore<D>& s, const NeighborList<D>& nl, const K& k) {
     bind(s, nl, k);
-    if (storage_ == Storage::kStream) return;
     const std::size_t n = nl.pairs();
-    fit(r_, n);
-    for (std::size_t i = 0; i < s.owned(); ++i) distances(nl, i, r_.data() + nl.first(i));
-    evaluate_table(n, k);
+    if (storage_ == Storage::kTable) {
+      fit(r_, n);
+      for (std::size_t i = 0; i < s.owned(); ++i) distances(nl, i, r_.data() + nl.first(i));
+      evaluate_table(n, k);
+    } else if (storage_ == Storage::kCompact) {
+      fit(r32_, n);
+      fit(w32_, n);
+      fit(dw32_, n);
+      for (std::size_t i = 0; i < s.owned(); ++i) {
+        const auto len = static_cast<std::size_t>(nl.end(i) - nl.begin(i));
+        grow_scratch(len);
+        distances(nl, i, r_.data());
+        k.evaluate(len, r_.data(), w_.data(), dw_.data());
+        round_into(len, nl.first(i));
+      }
+    }
   }
 
-  // Verlet lists: room for the squared distances that nl.refine() writes as it tests the
+  // Verlet lists: nl.refine() keeping the squared distances it computes as it tests the
   // candidates, so that prepare_refined() takes them instead of gathering the positions of
-  // every pair a second time (about a third of prepare() in the 3D powder box); nullptr with
-  // kStream, which keeps no table.
-  double* squared_distances_for(const NeighborList<D>& nl) {
-    if (storage_ == Storage::kStream) return nullptr;
-    fit(r_, nl.candidate_pairs());
-    filled_by_ = nl.generation() + 1;  // the refinement that comes next
-    return r_.data();
+  // every pair a second time (about a third of prepare() in the 3D powder box). kCompact keeps
+  // them in single precision where prepare_refined() then writes the distances.
+  void refine(NeighborList<D>& nl, const ParticleStore<D>& s, double rc, double contact_range) {
+    if (storage_ == Storage::kTable)
+      nl.refine(s, rc, contact_range, r_);
+    else if (storage_ == Storage::kCompact)
+      nl.refine(s, rc, contact_range, r32_);
+    else
+      nl.refine(s, rc, contact_range);
+    filled_by_ = storage_ == Storage::kStream ? kNone : nl.generation();
   }
-  // As prepare(), after nl.refine() wrote the squared distances into squared_distances_for():
-  // the same bits, r = sqrt(|x_i - x_j|^2) computed alike.
+  // As prepare(), after refine(): with kTable the same bits, r = sqrt(|x_i - x_j|^2) computed
+  // alike; with kCompact W and dW/dr of the distance from the single-precision square.
   template <class K>
   void prepare_refined(const ParticleStore<D>& s, const NeighborList<D>& nl, const K& k) {
     if (storage_ == Storage::kStream) return prepare(s, nl, k);
@@ -66,8 +89,22 @@ class PairKernel {
       throw std::logic_error("pair kernel: refine() did not write the squared distances");
     bind(s, nl, k);
     const std::size_t n = nl.pairs();
-    for (std::size_t e = 0; e < n; ++e) r_[e] = std::sqrt(r_[e]);
-    evaluate_table(n, k);
+    if (storage_ == Storage::kTable) {
+      for (std::size_t e = 0; e < n; ++e) r_[e] = std::sqrt(r_[e]);
+      evaluate_table(n, k);
+      return;
+    }
+    fit(w32_, n);
+    fit(dw32_, n);
+    // In blocks, so that the double scratch stays small and in cache.
+    constexpr std::size_t kBlock = 512;
+    grow_scratch(kBlock);
+    for (std::size_t e0 = 0; e0 < n; e0 += kBlock) {
+      const std::size_t len = std::min(kBlock, n - e0);
+      for (std::size_t e = 0; e < len; ++e) r_[e] = std::sqrt(static_cast<double>(r32_[e0 + e]));
+      k.evaluate(len, r_.data(), w_.data(), dw_.data());
+      round_into(len, e0);
+    }
   }
 
   // The values of particle i's pairs. With kStream they live in a scratch buffer until the
@@ -82,18 +119,27 @@ class PairKernel {
       return {r_.data() + e, w_.data() + e, dw_.data() + e};
     }
     const auto n = static_cast<std::size_t>(nl.end(i) - nl.begin(i));
-    if (r_.size() < n) {  // grows to the longest list once, then never allocates
-      r_.resize(n);
-      w_.resize(n);
-      dw_.resize(n);
+    grow_scratch(n);
+    if (storage_ == Storage::kCompact) {
+      const float* r32 = r32_.data() + nl.first(i);
+      const float* w = w32_.data() + nl.first(i);
+      const float* dw = dw32_.data() + nl.first(i);
+      double *r = r_.data(), *wd = w_.data(), *dwd = dw_.data();
+      for (std::size_t e = 0; e < n; ++e) {
+        r[e] = r32[e];
+        wd[e] = w[e];
+        dwd[e] = dw[e];
+      }
+    } else {
+      distances(nl, i, r_.data());
+      evaluate_(kernel_, n, r_.data(), w_.data(), dw_.data());
     }
-    distances(nl, i, r_.data());
-    evaluate_(kernel_, n, r_.data(), w_.data(), dw_.data());
     return {r_.data(), w_.data(), dw_.data()};
   }
 
   std::size_t bytes() const {
-    return (r_.capacity() + w_.capacity() + dw_.capacity()) * sizeof(double);
+    return (r_.capacity() + w_.capacity() + dw_.capacity()) * sizeof(double) +
+           (r32_.capacity() + w32_.capacity() + dw32_.capacity()) * sizeof(float);
   }
 
  private:
@@ -105,7 +151,23 @@ class PairKernel {
       static_cast<const K*>(kernel)->evaluate(n, r, w, dw);
     };
     generation_ = nl.generation();
-    filled_by_ = std::numeric_limits<std::uint64_t>::max();  // the squared distances are used
+    filled_by_ = kNone;  // the squared distances are used
+  }
+  // The scratch of kStream and kCompact: grows to the longest list once, then never allocates.
+  void grow_scratch(std::size_t n) const {
+    if (r_.size() >= n) return;
+    r_.resize(n);
+    w_.resize(n);
+    dw_.resize(n);
+  }
+  // The first n values of the double scratch into the single-precision table at e0.
+  void round_into(std::size_t n, std::size_t e0) {
+    float *r = r32_.data() + e0, *w = w32_.data() + e0, *dw = dw32_.data() + e0;
+    for (std::size_t e = 0; e < n; ++e) {
+      r[e] = static_cast<float>(r_[e]);
+      w[e] = static_cast<float>(w_[e]);
+      dw[e] = static_cast<float>(dw_[e]);
+    }
   }
   // W and dW/dr of the first n distances in r_.
   template <class K>
@@ -114,12 +176,13 @@ class PairKernel {
     fit(dw_, n);
     k.evaluate(n, r_.data(), w_.data(), dw_.data());
   }
-  // At least n values; grown with 25% spare, as the list keeps, and never shrunk, so that
+  // At least n values; grown with 1/8 spare, as the list keeps, and never shrunk, so that
   // sizes changing from step to step neither reallocate nor fill.
-  static void fit(std::vector<double>& v, std::size_t n) {
+  template <class Real>
+  static void fit(std::vector<Real>& v, std::size_t n) {
     if (v.size() >= n) return;
-    v.reserve(n + n / 4);  // exactly: resize() alone would double the capacity
-    v.resize(n + n / 4);
+    v.reserve(n + n / 8);  // exactly: resize() alone would double the capacity
+    v.resize(n + n / 8);
   }
 
   // |x_i - x_j| of particle i's pairs, as Eigen's norm() (sqrt of squaredNorm) computes it:
@@ -134,14 +197,16 @@ class PairKernel {
     for (std::size_t e = 0; e < n; ++e) out[e] = std::sqrt(out[e]);
   }
 
+  static constexpr std::uint64_t kNone = std::numeric_limits<std::uint64_t>::max();
   Storage storage_;
   const ParticleStore<D>* s_ = nullptr;
   const void* kernel_ = nullptr;
   void (*evaluate_)(const void*, std::size_t, const double*, double*, double*) = nullptr;
   std::uint64_t generation_ = std::numeric_limits<std::uint64_t>::max();  // matches no list
-  // The generation of the list whose refine() wrote the squared distances into r_.
-  std::uint64_t filled_by_ = std::numeric_limits<std::uint64_t>::max();
-  mutable std::vector<double> r_, w_, dw_;  // the table, or (kStream) the scratch
+  // The generation of the list whose refine() wrote the squared distances (r_ or r32_).
+  std::uint64_t filled_by_ = kNone;
+  mutable std::vector<double> r_, w_, dw_;  // the table (kTable), or the scratch
+  std::vector<float> r32_, w32_, dw32_;     // the table (kCompact)
 };
 
 }  // namespace sph

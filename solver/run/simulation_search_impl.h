@@ -68,8 +68,7 @@ void Simulation<D, K>::exchange_and_search(Search mode) {
   }
   if (skin_ > 0) {
     Timer tm(timer("neighbor_search"));
-    nl_.refine(s_, rc_, contact_ ? contact_->candidate_range() : 0.0,
-               pk_.squared_distances_for(nl_));
+    pk_.refine(nl_, s_, rc_, contact_ ? contact_->candidate_range() : 0.0);
   }
   Timer tm(timer("pair_kernel"));
   if (skin_ > 0)

@@ -6,7 +6,7 @@
 // per step by unit and the per-particle storage by unit. A unit a scene does not use must show no
 // time and no storage.
 //
-//   bench_effects [--steps S] [--dx DX] [--pair-kernel table|stream] [--only LABEL_PART]
+//   bench_effects [--steps S] [--dx DX] [--pair-kernel compact|table|stream] [--only LABEL_PART]
 #include <mpi.h>
 
 #include <cstdio>
@@ -193,6 +193,8 @@ int main(int argc, char** argv) {
     if (!only.empty() && std::string(v.label).find(only) == std::string::npos) continue;
     sph::v1::Case c = sph::parse_case_text(scene(dx, v.effects));
     if (pair_kernel == "stream") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_STREAM);
+    if (pair_kernel == "table") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_TABLE);
+    if (pair_kernel == "compact") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_COMPACT);
     run(v.label, c, steps, MPI_COMM_WORLD);
   }
   MPI_Finalize();

@@ -4,7 +4,8 @@
 // Run under mpirun for the parallel numbers (tests/bench/scaling.sh drives that).
 //
 //   bench_solver [--dim 2|3] [--particles N] [--steps S] [--kernel quintic|wendland]
-//                [--pair-kernel table|stream]   (Case.pair_kernel_storage; default: the case's)
+//                [--pair-kernel compact|table|stream]   (Case.pair_kernel_storage; default: the
+//                case's)
 //   bench_solver --case FILE [--steps S] [--skip T]   (any case; --skip advances T steps first,
 //                                                     e.g. to time bodies in contact)
 #include <mpi.h>
@@ -97,8 +98,13 @@ void bench(const sph::v1::Case& c, int steps, int skip, MPI_Comm comm) {
   double pairs = static_cast<double>(sim.pairs());
   MPI_Allreduce(MPI_IN_PLACE, &pairs, 1, MPI_DOUBLE, MPI_SUM, comm);
   double bytes = 0;
-  for (const auto& [owner, b] : sim.memory_by_owner()) bytes += static_cast<double>(b);
-  MPI_Allreduce(MPI_IN_PLACE, &bytes, 1, MPI_DOUBLE, MPI_SUM, comm);
+  auto by_owner = sim.memory_by_owner();
+  for (auto& [owner, b] : by_owner) {
+    double v = static_cast<double>(b);
+    MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_SUM, comm);
+    b = static_cast<std::size_t>(v);
+    bytes += v;
+  }
   double comm_max = comm_s;
   MPI_Allreduce(MPI_IN_PLACE, &comm_max, 1, MPI_DOUBLE, MPI_MAX, comm);
   const double n = static_cast<double>(sim.global_particles());
@@ -111,8 +117,10 @@ void bench(const sph::v1::Case& c, int steps, int skip, MPI_Comm comm) {
         "bench_solver case=%s dim=%d kernel=%s pair_kernel=%s ranks=%d particles=%.0f (dx=%.4g) "
         "steps=%d from t=%.4g setup=%.2fs\n",
         c.name().c_str(), D, K::kSupport == 3.0 ? "quintic" : "wendland",
-        c.pair_kernel_storage() == sph::v1::PAIR_KERNEL_STREAM ? "stream" : "table", size, n,
-        c.dx(), steps, sim.time(), setup);
+        c.pair_kernel_storage() == sph::v1::PAIR_KERNEL_STREAM  ? "stream"
+        : c.pair_kernel_storage() == sph::v1::PAIR_KERNEL_TABLE ? "table"
+                                                                : "compact",
+        size, n, c.dx(), steps, sim.time(), setup);
     std::printf("  time/step          %10.3f ms\n", 1e3 * wall / steps);
     std::printf("  particle-steps/s   %10.3e  (%.3e per rank; all particles, walls included)\n",
                 n * steps / wall, n * steps / wall / size);
@@ -121,6 +129,8 @@ void bench(const sph::v1::Case& c, int steps, int skip, MPI_Comm comm) {
     std::printf("  pair interactions  %10.3e /s  (%.1f neighbours per particle)\n",
                 pairs * steps / wall, pairs / n);
     std::printf("  memory             %10.0f bytes/particle\n", bytes / n);
+    for (const auto& [owner, b] : by_owner)
+      if (b > 0) std::printf("    %-22s %6.0f B\n", owner.c_str(), static_cast<double>(b) / n);
     std::printf("  communication      %10.1f %% of step time (rank 0), %.1f %% (slowest rank)\n",
                 100 * comm_s / wall, 100 * comm_max / wall);
     std::printf("  imbalance          %10.3f (largest rank / mean)\n", sim.imbalance());
@@ -174,6 +184,7 @@ int main(int argc, char** argv) {
   }
   if (pair_kernel == "stream") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_STREAM);
   if (pair_kernel == "table") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_TABLE);
+  if (pair_kernel == "compact") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_COMPACT);
   if (dim == 2) {
     if (wendland)
       bench<2, sph::WendlandC2<2>>(c, steps, skip, MPI_COMM_WORLD);

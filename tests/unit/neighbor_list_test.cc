@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <random>
 #include <set>
@@ -246,13 +247,13 @@ TEST(NeighborList, RefinedSquaredDistancesGiveThePairKernelOfThePositions) {
   NeighborList<2> nl;
   nl.build_candidates(s, one.grid, one.halo.ghost_box(), rc, skin, &q, true);
   const QuinticSpline<2> kernel(rc / 3);
-  PairKernel<2> fused, direct;
+  PairKernel<2> fused(PairKernel<2>::Storage::kTable), direct(PairKernel<2>::Storage::kTable);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> step(-0.11 * skin, 0.11 * skin);
   for (int round = 0; round < 3; ++round) {  // the spare room of r2 is reused
     for (std::size_t i = 0; i < s.owned(); ++i) s.x[i] += Vec<2>(step(rng), step(rng));
     one.halo.refresh_ghosts(s);
-    nl.refine(s, rc, range, fused.squared_distances_for(nl));
+    fused.refine(nl, s, rc, range);
     ASSERT_GT(nl.pairs(), 1000u);
     ASSERT_LT(nl.pairs(), nl.candidate_pairs()) << "no candidate was left out";
     fused.prepare_refined(s, nl, kernel);
@@ -271,6 +272,74 @@ TEST(NeighborList, RefinedSquaredDistancesGiveThePairKernelOfThePositions) {
   EXPECT_THROW(fused.prepare_refined(s, nl, kernel), std::logic_error);
   nl.refine(s, rc, range);  // without the squared distances
   EXPECT_THROW(fused.prepare_refined(s, nl, kernel), std::logic_error);
+}
+
+// The compact pair kernel (the default) keeps r, W and dW/dr in single precision (storage
+// about half the table's): from a fresh list its values are the double table's rounded once
+// (relative 2^-24); from the Verlet path (squared distances kept in single precision) r is
+// within 2^-23 relative and W, dW/dr within 2^-23 of the largest |W| and |dW/dr| the kernel takes.
+TEST(NeighborList, CompactPairKernelIsTheTableRoundedToSinglePrecision) {
+  const double rc = 0.3, range = 0.12, skin = 0.08;
+  OneRank<2> one(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc + skin, {true, false});
+  ParticleStore<2> s;
+  std::vector<std::int32_t> body;
+  mixed_particles(s, body);
+  one.halo.migrate(s);
+  one.halo.build_ghosts(s);
+  for (std::size_t k = s.owned(); k < s.size(); ++k)
+    body.push_back(body[static_cast<std::size_t>(s.id[k])]);
+  ContactQuery q{body.data(), range, true};
+  const QuinticSpline<2> kernel(rc / 3);
+  double w_max = 0, dw_max = 0;
+  for (double r = 0; r < rc; r += 1e-4) {
+    w_max = std::max(w_max, std::abs(kernel.W(r)));
+    dw_max = std::max(dw_max, std::abs(kernel.dW(r)));
+  }
+  PairKernel<2> table(PairKernel<2>::Storage::kTable), compact;
+  double worst_fresh = 0, worst_r = 0, worst_w = 0, worst_dw = 0;
+  for (const bool verlet : {false, true}) {
+    NeighborList<2> nl;
+    if (verlet) {
+      nl.build_candidates(s, one.grid, one.halo.ghost_box(), rc, skin, &q, true);
+      std::mt19937 rng(11);
+      std::uniform_real_distribution<double> step(-0.11 * skin, 0.11 * skin);
+      for (std::size_t i = 0; i < s.owned(); ++i) s.x[i] += Vec<2>(step(rng), step(rng));
+      one.halo.refresh_ghosts(s);
+      compact.refine(nl, s, rc, range);
+      compact.prepare_refined(s, nl, kernel);
+    } else {
+      nl.build(s, one.grid, one.halo.ghost_box(), rc, &q, true);
+      compact.prepare(s, nl, kernel);
+    }
+    table.prepare(s, nl, kernel);
+    ASSERT_GT(nl.pairs(), 1000u);
+    for (std::size_t i = 0; i < s.owned(); ++i) {
+      const PairValues a = compact.of(nl, i), b = table.of(nl, i);
+      for (std::ptrdiff_t e = 0; e < nl.end(i) - nl.begin(i); ++e) {
+        if (verlet) {
+          worst_r = std::max(worst_r, std::abs(a.r[e] - b.r[e]) / b.r[e]);
+          worst_w = std::max(worst_w, std::abs(a.w[e] - b.w[e]) / w_max);
+          worst_dw = std::max(worst_dw, std::abs(a.dw[e] - b.dw[e]) / dw_max);
+        } else {
+          ASSERT_EQ(a.r[e], static_cast<double>(static_cast<float>(b.r[e])))
+              << "particle " << i << " pair " << e;
+          ASSERT_EQ(a.w[e], static_cast<double>(static_cast<float>(b.w[e])));
+          ASSERT_EQ(a.dw[e], static_cast<double>(static_cast<float>(b.dw[e])));
+          if (b.w[e] != 0)
+            worst_fresh = std::max(worst_fresh, std::abs(a.w[e] - b.w[e]) / std::abs(b.w[e]));
+        }
+      }
+    }
+    EXPECT_LT(static_cast<double>(compact.bytes()), 0.6 * static_cast<double>(table.bytes()));
+  }
+  std::printf(
+      "compact pair kernel: fresh W within %.3g relative; Verlet r within %.3g relative, W within "
+      "%.3g of max |W|, dW/dr within %.3g of max |dW/dr|\n",
+      worst_fresh, worst_r, worst_w, worst_dw);
+  EXPECT_LE(worst_r, std::ldexp(1.0, -23));
+  EXPECT_LE(worst_fresh, std::ldexp(1.0, -24));
+  EXPECT_LE(worst_w, std::ldexp(1.0, -23));
+  EXPECT_LE(worst_dw, std::ldexp(1.0, -23));
 }
 
 // Particles that change kind between fluid and rigid, or body, where they stand (phase
