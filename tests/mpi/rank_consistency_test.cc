@@ -894,6 +894,10 @@ TEST(RankConsistency, DensityDiffusionAcrossRanksAndResume) {
   check_resume("density_diffusion", c, 1200, 601);
 }
 
+v1::Contact parse_contact(const std::string& text) {
+  return parse_case_text("contact { " + text + " }").contact();
+}
+
 // Two disks thrown at a bar pinned at its centre in a closed water box, with impulse contact
 // (RESTITUTION, e = 0.5) and friction: the candidate pairs gathered from every rank, the
 // impulses on the replicated body table, and the pinned bar turning while its centre stays.
@@ -941,6 +945,26 @@ TEST(RankConsistency, RestitutionContactWithAPinnedBodyAcrossRanksAndResume) {
   // Contacts at steps 0, 1, 16, and from 212 on (a disk rattling between the bar and the
   // floor): the resume at 250 continues among them.
   check_resume("restitution", c, 400, 250);
+}
+
+TEST(RankConsistency, RepulsionAndDampingFromRestitutionAcrossRanks) {
+  // The same scene with the particle-pair laws that read the body table inside the force
+  // loop: Glowinski's repulsion (range dx/2) and the spring-dashpot whose dashpot each pair
+  // takes from the two bodies' reduced mass (restitution 0.5).
+  for (const char* contact : {"model: REPULSIVE repulsion { strength: 50 range: 0.01 }",
+                              "stiffness: 1e4 restitution: 0.5"}) {
+    v1::Case c = disks_striking_a_pinned_bar();
+    c.clear_contact();
+    c.mutable_contact()->MergeFrom(parse_contact(contact));
+    const std::string name = c.contact().model() == v1::REPULSIVE ? "repulsion" : "damping_from_e";
+    check_rank_counts(name, c, 300);
+    if (world_rank() != 0) continue;
+    const std::string base = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_" + name + "_";
+    test::ResultReader r1(base + "1/result.h5"), r4(base + "4/result.h5");
+    expect_same_series(r1, r4, {"bodies/position", "bodies/velocity", "bodies/contact_force"});
+    const auto contacts = r1.series("bodies/contacts");
+    EXPECT_GT(*std::max_element(contacts.begin(), contacts.end()), 0.0) << name;
+  }
 }
 
 }  // namespace
