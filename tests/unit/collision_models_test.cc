@@ -363,7 +363,8 @@ std::vector<FieldError> errors_of(const std::string& extra) {
     domain { lo { x: 0 y: 0 } hi { x: 2 y: 2 } }
     materials { name: "s" phase: SOLID density: 2 }
     bodies { name: "b" material: "s" shape { ball { center { x: 1 y: 1 } radius: 0.2 } } }
-    time { end_time: 1 fixed_dt: 1e-3 })" + extra));
+    time { end_time: 1 fixed_dt: 1e-3 })" +
+                                       extra));
 }
 
 TEST(CollisionModels, ModelsAndBodyConstraintsAreValidated) {
