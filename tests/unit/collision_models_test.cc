@@ -210,6 +210,67 @@ TEST(CollisionModels, ImpulseModelRestitutesExactlyAndConservesMomentum) {
   }
 }
 
+TEST(CollisionModels, ImpulsesIn3D) {
+  // Two spheres (R = 3.2 dx about lattice points: no lattice point on the surface, whose
+  // rounding would make them lopsided and turn them) head-on with e = 0.5, and a
+  // pinned block struck off its centre by a sphere with e = 1: the block's centre stays and
+  // the kinetic energy is kept (to the tumbling block's integration error, O(dt^2)).
+  const std::string head = R"(
+    dimension: 3 dx: 0.01
+    domain { lo { x: -0.2 y: -0.2 z: -0.2 } hi { x: 0.2 y: 0.2 z: 0.2 } }
+    materials { name: "s" phase: SOLID density: 1000 }
+    time { end_time: 0.2 fixed_dt: 1e-3 }
+    output { series_interval: 1e-3 })";
+  {
+    const std::string out = test::output_dir("impulses_3d_pair");
+    const RunOutcome r = test::run(parse_case_text(head + R"(
+      bodies { name: "a" material: "s" shape { ball { center { x: -0.045 y: 0.005 z: 0.005 } radius: 0.032 } }
+               initial_velocity { x: 0.2 } }
+      bodies { name: "b" material: "s" shape { ball { center { x: 0.045 y: 0.005 z: 0.005 } radius: 0.032 } }
+               initial_velocity { x: -0.2 } }
+      contact { model: RESTITUTION restitution: 0.5 })"),
+                                   out);
+    ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+    test::ResultReader rr(out + "/result.h5");
+    const auto vel = rr.series("bodies/velocity");  // [samples][2][3]
+    const std::size_t last = vel.size() - 6;
+    const double e = (vel[last + 3] - vel[last]) / 0.4;
+    const double p = vel[last] + vel[last + 3],
+                 side = std::abs(vel[last + 1]) + std::abs(vel[last + 2]);
+    std::printf("3D spheres, e = 0.5: measured %.15f, momentum after %.1e, sideways %.1e\n", e, p,
+                side);
+    EXPECT_NEAR(e, 0.5, 1e-12);
+    EXPECT_LT(std::abs(p), 1e-15);
+    EXPECT_LT(side, 1e-12);
+  }
+  const std::string out = test::output_dir("impulses_3d_pinned");
+  const RunOutcome r = test::run(parse_case_text(head + R"(
+    bodies { name: "block" material: "s" motion_type: PINNED
+             shape { box { lo { x: 0 y: -0.08 z: -0.02 } hi { x: 0.02 y: 0.08 z: 0.02 } } } }
+    bodies { name: "ball" material: "s" shape { ball { center { x: -0.05 y: 0.053 z: 0.002 } radius: 0.03 } }
+             initial_velocity { x: 0.3 } }
+    contact { model: RESTITUTION restitution: 1 })"),
+                                 out);
+  ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
+  test::ResultReader rr(out + "/result.h5");
+  const auto pos = rr.series("bodies/position"), ke = rr.series("bodies/kinetic_energy");
+  const auto w = rr.series("bodies/angular_velocity");
+  const std::size_t n = ke.size() / 2;
+  double moved = 0, drift = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    for (int a = 0; a < 3; ++a) moved = std::max(moved, std::abs(pos[6 * k + a] - pos[a]));
+    drift = std::max(drift, std::abs((ke[2 * k] + ke[2 * k + 1]) / ke[1] - 1));
+  }
+  const double w_end = std::hypot(w[6 * (n - 1)], w[6 * (n - 1) + 1], w[6 * (n - 1) + 2]);
+  std::printf(
+      "3D pinned block struck: centre moved %.1e, |omega| after %.3f rad/s, kinetic "
+      "energy within %.1e\n",
+      moved, w_end, drift);
+  EXPECT_EQ(moved, 0.0);
+  EXPECT_GT(w_end, 0.5);
+  EXPECT_LT(drift, 1e-3);
+}
+
 // A disk of D/dx = 8 dropped onto a floor in vacuum: with impulses it rebounds at e times its
 // impact speed; the spring-dashpot with restitution e (n pairs touch at once: sqrt(n) zeta)
 // and Glowinski's repulsion (no dissipation: e close to 1) for comparison.
