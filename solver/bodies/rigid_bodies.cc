@@ -27,10 +27,24 @@ RigidBodies<D>::RigidBodies(ParticleStore<D>& s, const v1::Case& c,
     b.source = k;
     b.serial = k;
     b.name = pb.name().empty() ? "body_" + std::to_string(k) : pb.name();
-    b.motion = pb.motion_type() == v1::FIXED        ? BodyMotion::kFixed
-               : pb.motion_type() == v1::PRESCRIBED ? BodyMotion::kPrescribed
-                                                    : BodyMotion::kFree;
-    if (b.motion == BodyMotion::kPrescribed) b.path = MotionPath(pb.motion(), D);
+    switch (pb.motion_type()) {
+      case v1::FIXED:
+        b.motion = BodyMotion::kFixed;
+        break;
+      case v1::PRESCRIBED:
+        b.motion = BodyMotion::kPrescribed;
+        break;
+      case v1::PINNED:
+        b.motion = BodyMotion::kPinned;
+        break;
+      case v1::PRESCRIBED_ROTATION:
+        b.motion = BodyMotion::kPrescribedRotation;
+        break;
+      default:
+        b.motion = BodyMotion::kFree;
+    }
+    if (b.motion == BodyMotion::kPrescribed || b.motion == BodyMotion::kPrescribedRotation)
+      b.path = MotionPath(pb.motion(), D);
     const double rho_s = solid_density[static_cast<size_t>(k)];
     // Buoyancy-reduced body force b = (rho_s - rho_f)/rho_s g (Fuchs 2021, falling disk).
     if (pb.body_force() == v1::BUOYANCY_REDUCED)
@@ -99,8 +113,9 @@ void RigidBodies<D>::initialize(const Comm& comm, double dx, const std::vector<V
     for (int p = 0; p < A; ++p)
       for (int q = 0; q < A; ++q)
         b.inertia_body(p, q) = second[k * s2 + static_cast<size_t>(A * p + q)];
-    b.velocity = b.moves_freely() ? v0[k] : Vec<D>::Zero();
-    b.omega = b.moves_freely() ? w0[k] : AngVec<D>::Zero();
+    b.velocity = b.translates_freely() ? v0[k] : Vec<D>::Zero();
+    b.omega = b.rotates_freely() ? w0[k] : AngVec<D>::Zero();
+    if (b.motion == BodyMotion::kPrescribedRotation) set_prescribed_rotation(b, 0.0);
     b.angular_momentum = b.world_inertia_times(b.omega);
   }
   for (std::size_t i = 0; i < s_.owned(); ++i)
@@ -119,8 +134,8 @@ double RigidBodies<D>::self_inertia_per_mass(double dx) {
 template <int D>
 void RigidBodies<D>::kick(double h, double t) {
   for (RigidBody<D>& b : bodies_) {
-    if (!b.moves_freely()) continue;
-    b.velocity += h * (b.fluid_force / b.mass + body_force(b, t));
+    if (b.translates_freely()) b.velocity += h * (b.fluid_force / b.mass + body_force(b, t));
+    if (!b.rotates_freely()) continue;
     if constexpr (D == 2) {
       b.omega += h * b.inverse_inertia(b.fluid_torque);
     } else {
@@ -131,11 +146,27 @@ void RigidBodies<D>::kick(double h, double t) {
 }
 
 template <int D>
+void RigidBodies<D>::set_prescribed_rotation(RigidBody<D>& b, double t) {
+  const double w = b.path.angular_velocity(t), angle = b.path.angle(t);
+  if constexpr (D == 2) {
+    b.orientation.angle = angle;
+    b.omega[0] = w;
+  } else {
+    b.orientation.q = Eigen::Quaterniond(Eigen::AngleAxisd(angle, b.path.axis()));
+    b.omega = w * b.path.axis();
+  }
+}
+
+template <int D>
 void RigidBodies<D>::drift(double dt, double t_end) {
   for (RigidBody<D>& b : bodies_) {
     if (!b.active()) continue;
-    if (b.motion == BodyMotion::kFree) {
+    if (b.motion == BodyMotion::kPrescribedRotation) {
       b.com += dt * b.velocity;  // eq. 33
+      set_prescribed_rotation(b, t_end);
+      b.angular_momentum = b.world_inertia_times(b.omega);
+    } else if (b.motion == BodyMotion::kFree || b.motion == BodyMotion::kPinned) {
+      if (b.motion == BodyMotion::kFree) b.com += dt * b.velocity;  // eq. 33
       if constexpr (D == 3) {
         // Eqs. 34-35 with the angular velocity of the mid-step orientation: with L fixed
         // during the drift, omega = I_w(q)^-1 L turns with the body, and evaluating it at
@@ -154,14 +185,7 @@ void RigidBodies<D>::drift(double dt, double t_end) {
         b.com[a] = c[a];
         b.velocity[a] = v[a];
       }
-      const double w = b.path.angular_velocity(t_end), angle = b.path.angle(t_end);
-      if constexpr (D == 2) {
-        b.orientation.angle = angle;
-        b.omega[0] = w;
-      } else {
-        b.orientation.q = Eigen::Quaterniond(Eigen::AngleAxisd(angle, b.path.axis()));
-        b.omega = w * b.path.axis();
-      }
+      set_prescribed_rotation(b, t_end);
     }
   }
 }
@@ -222,17 +246,26 @@ template <int D>
 void RigidBodies<D>::update_accelerations(double t) {
   for (RigidBody<D>& b : bodies_) {
     if (!b.active()) continue;
-    if (b.motion == BodyMotion::kFree) {
+    if (b.motion == BodyMotion::kFree || b.motion == BodyMotion::kPinned ||
+        b.motion == BodyMotion::kPrescribedRotation) {
       // The contact reaches the fluid's wall condition only as far as it holds the body
       // against its other forces (see RigidBody::mean_contact_force).
       const Vec<D> smooth = b.fluid_force + b.mass * body_force(b, t);
       const double fc = b.mean_contact_force.norm();
       const double share = fc > smooth.norm() ? smooth.norm() / fc : 1.0;
-      b.acceleration = (smooth + share * b.mean_contact_force) / b.mass;
-      AngVec<D> m = b.fluid_torque + share * b.mean_contact_torque;
-      if constexpr (D == 3)
-        m -= AngVec<D>(Eigen::Vector3d(b.omega).cross(Eigen::Vector3d(b.angular_momentum)));
-      b.angular_acceleration = b.inverse_inertia(m);
+      b.acceleration = b.translates_freely()
+                           ? Vec<D>((smooth + share * b.mean_contact_force) / b.mass)
+                           : Vec<D>(Vec<D>::Zero());
+      if (b.rotates_freely()) {
+        AngVec<D> m = b.fluid_torque + share * b.mean_contact_torque;
+        if constexpr (D == 3)
+          m -= AngVec<D>(Eigen::Vector3d(b.omega).cross(Eigen::Vector3d(b.angular_momentum)));
+        b.angular_acceleration = b.inverse_inertia(m);
+      } else if constexpr (D == 2) {
+        b.angular_acceleration[0] = b.path.angular_acceleration(t);
+      } else {
+        b.angular_acceleration = b.path.angular_acceleration(t) * b.path.axis();
+      }
     } else if (b.motion == BodyMotion::kPrescribed) {
       Point3 c0 = Point3::Zero();
       for (int a = 0; a < D; ++a) c0[a] = b.com0[a];

@@ -84,6 +84,8 @@ class RigidBodies {
  private:
   friend class RigidBodiesTest;
   Vec<D> body_force(const RigidBody<D>& b, double t) const;
+  // Orientation and angular velocity of a body with prescribed rotation at time t.
+  static void set_prescribed_rotation(RigidBody<D>& b, double t);
 
   ParticleStore<D>& s_;
   std::vector<RigidBody<D>> bodies_;

@@ -21,7 +21,9 @@ namespace sph {
 template <int D>
 using AngVec = Eigen::Matrix<double, D == 2 ? 1 : 3, 1>;  // angular quantities
 
-enum class BodyMotion { kFree, kFixed, kPrescribed };
+// kPinned: translation fixed at the centre of mass, rotation free (Reder et al. 2021 sec. 3.3);
+// kPrescribedRotation: rotation about the centre of mass prescribed, translation free.
+enum class BodyMotion { kFree, kFixed, kPrescribed, kPinned, kPrescribedRotation };
 
 template <int D>
 struct Orientation;
@@ -119,6 +121,19 @@ struct RigidBody {
   // A body whose particles all melted (or that merged into another) leaves its slot empty.
   bool active() const { return particles > 0; }
   bool moves_freely() const { return motion == BodyMotion::kFree && active(); }
+  // Whether forces move its centre of mass, and torques turn it.
+  bool translates_freely() const {
+    return active() && (motion == BodyMotion::kFree || motion == BodyMotion::kPrescribedRotation);
+  }
+  bool rotates_freely() const {
+    return active() && (motion == BodyMotion::kFree || motion == BodyMotion::kPinned);
+  }
+  // Inverse mass against an impulse (0 where the translation is held), and the inverse
+  // world-frame inertia (0 where the rotation is held).
+  double inverse_mass() const { return translates_freely() ? 1.0 / mass : 0.0; }
+  AngVec<D> inverse_inertia_if_free(const AngVec<D>& m) const {
+    return rotates_freely() ? inverse_inertia(m) : AngVec<D>(AngVec<D>::Zero());
+  }
 
   // World-frame inertia and its inverse applied to a vector.
   AngVec<D> inverse_inertia(const AngVec<D>& m) const {

@@ -37,6 +37,7 @@ void SpringDashpotContact<D>::evaluate(const NeighborList<D>& nl, const Comm& co
   };
   constexpr int A = RigidBodies<D>::A;
   const std::size_t per = D + A + 1;
+  const double reach = touch_range();
   const auto sums = exact_sum(
       nb * per,
       [&](auto emit) {
@@ -53,10 +54,17 @@ void SpringDashpotContact<D>::evaluate(const NeighborList<D>& nl, const Comm& co
             if (s_.kind[*jp] == Kind::kRigid) state(*jp, xj, vj);
             const Vec<D> d = xi - xj;
             const double dist = d.norm();
-            if (dist >= dx_ || dist == 0.0) continue;
+            if (dist >= reach || dist == 0.0) continue;
             const Vec<D> e = d / dist;
             const Vec<D> vij = vi - vj;
-            const double fn = k_ * (dist - dx_) + d_ * e.dot(vij);  // eq. 27
+            // Normal force along e, negative pushing apart: Glowinski's repulsion (Reder et
+            // al. 2021 eq. 24) or the spring-dashpot of eq. 27.
+            const double fn =
+                repulsive()
+                    ? -repulsion_.force(dist - dx_)
+                    : k_ * (dist - dx_) +
+                          pair_damping(body[i], s_.kind[*jp] == Kind::kRigid ? body[*jp] : -1) *
+                              e.dot(vij);
             if (fn < 0.0) {
               f -= fn * e;
               touching += 1;
@@ -107,8 +115,8 @@ void SpringDashpotContact<D>::drift(const NeighborList<D>& nl, double dt, int su
       RigidBody<D>& b = bs[k];
       impulse_[k] += tau * b.contact_force;
       angular_impulse_[k] += tau * b.contact_torque;
-      if (!b.moves_freely()) continue;
-      b.velocity += tau / b.mass * b.contact_force;
+      if (b.translates_freely()) b.velocity += tau / b.mass * b.contact_force;
+      if (!b.rotates_freely()) continue;
       if constexpr (D == 2) {
         b.omega += tau * b.inverse_inertia(b.contact_torque);
       } else {

@@ -27,6 +27,8 @@
 #include "case/motion.h"
 #include "solver/bodies/body_regrouping.h"
 #include "solver/bodies/phase_transitions.h"
+#include "solver/bodies/restitution_contact.h"
+#include "solver/bodies/restitution_damping.h"
 #include "solver/bodies/rigid_bodies.h"
 #include "solver/bodies/spring_dashpot_contact.h"
 #include "solver/boundaries/open_boundaries.h"
@@ -206,7 +208,7 @@ class Simulation {
   bool subcycled_elastic_ = false;
   Column<double>* concentration_ = nullptr;
   Column<std::uint16_t>* wall_index_ = nullptr;
-  std::optional<SpringDashpotContact<D>> contact_;
+  std::unique_ptr<BodyContact<D>> contact_;   // the case's contact model
   std::optional<PhaseTransitions<D>> phase_;  // Fuchs 2021 eq. 29
   std::size_t body_slots_ = 0;                // width of the body series in the result
   void build_phase_transitions();

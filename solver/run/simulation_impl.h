@@ -251,7 +251,8 @@ void Simulation<D, K>::prime() {
   if (bodies_) {
     if (contact_) {
       contact_->drift(nl_, 0.0, 1, t_, comm_);  // evaluates the initial contact forces
-      contact_possible_ = comm_.min(nl_.min_contact_distance()) < 1.1 * dx_;
+      contact_possible_ =
+          comm_.min(nl_.min_contact_distance()) < contact_->touch_range() + 0.1 * dx_;
     }
     bodies_->update_accelerations(t_);
   }
@@ -301,7 +302,7 @@ typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
       return rep;
     }
   }
-  if (contact_) contact_possible_ = e.min_contact_distance < 1.1 * dx_;
+  if (contact_) contact_possible_ = e.min_contact_distance < contact_->touch_range() + 0.1 * dx_;
   if (step_ % kRebalanceEvery == 0) maybe_rebalance();
   return rep;
 }
@@ -340,7 +341,7 @@ std::string Simulation<D, K>::integrate_step(double dt) {
   exchange_and_search(Search::kAsNeeded);
   if (bodies_left && contact_) {
     // As after a phase transition: the rebuilt bodies' contact forces for the next step.
-    Timer tc(timer(SpringDashpotContact<D>::kName));
+    Timer tc(timer(BodyContact<D>::kName));
     contact_->refresh(nl_, comm_);
   }
   run_phase(StepPhase::kAfterSearch);
@@ -454,7 +455,7 @@ template <int D, class K>
 void Simulation<D, K>::move_bodies(double dt) {
   Timer tm(timer(RigidBodies<D>::kName));
   if (contact_) {
-    Timer tc(timer(SpringDashpotContact<D>::kName));
+    Timer tc(timer(BodyContact<D>::kName));
     // Substep only when bodies may touch during this step; otherwise one drift.
     contact_->drift(nl_, dt, substeps_, t_ + dt, comm_);
   } else {
@@ -493,7 +494,7 @@ std::string Simulation<D, K>::apply_phase_transitions() {
     // bodies' contact forces for the next step's first contact kick.
     exchange_and_search(Search::kKindsChanged);
     if (contact_) {
-      Timer tc(timer(SpringDashpotContact<D>::kName));
+      Timer tc(timer(BodyContact<D>::kName));
       contact_->refresh(nl_, comm_);
     }
     bodies_->update_accelerations(t_);  // the rebuilt bodies' own forces

@@ -72,10 +72,25 @@ void Simulation<D, K>::build_units() {
     }
     if (c_.has_contact()) {
       const auto& k = c_.contact();
-      contact_.emplace(s_, *bodies_, k.stiffness(), k.damping(), dx_,
-                       !k.has_with_walls() || k.with_walls(), k.friction().coefficient(),
-                       k.has_friction() ? k.friction().tangential_stiffness() : 0.0);
-      units_.push_back(SpringDashpotContact<D>::kName);
+      const bool walls = !k.has_with_walls() || k.with_walls();
+      if (k.model() == v1::RESTITUTION) {
+        contact_ = std::make_unique<RestitutionContact<D>>(
+            s_, *bodies_, k.restitution(), k.friction().coefficient(), dx_, walls, wall_index_);
+      } else {
+        ParticleContactLaw law;
+        law.stiffness = k.stiffness();
+        law.damping = k.damping();
+        if (k.model() == v1::REPULSIVE) {
+          law.repulsion_strength = k.repulsion().strength();
+          law.repulsion_range = k.repulsion().range();
+        } else if (k.has_restitution()) {
+          law.damping_ratio = damping_ratio_for_restitution(k.restitution());
+        }
+        law.friction = k.friction().coefficient();
+        law.tangential_stiffness = k.has_friction() ? k.friction().tangential_stiffness() : 0.0;
+        contact_ = std::make_unique<SpringDashpotContact<D>>(s_, *bodies_, law, dx_, walls);
+      }
+      units_.push_back(BodyContact<D>::kName);
     }
   }
   if (c_.elastic_bodies_size() > 0) {

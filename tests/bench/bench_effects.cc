@@ -26,6 +26,14 @@ struct Effects {
   bool plate = false;                  // an elastic plate standing on the floor, clamped there
   bool continuity = false;             // density by the continuity equation, not summation
   bool density_diffusion = false;      // with its density diffusion (Fourtakas, delta 0.1)
+  // The contact model with `contact` (docs/contact.md): the spring-dashpot with a damping,
+  // with the damping from a restitution, impulses, Glowinski's repulsion.
+  enum class Law {
+    kSpringDashpot,
+    kSpringDashpotFromE,
+    kImpulses,
+    kRepulsion
+  } law = Law::kSpringDashpot;
 };
 
 std::string scene(double dx, const Effects& e) {
@@ -71,7 +79,22 @@ surface_tension { pairs { material_a: "fluid" material_b: "drop" sigma: 0.04 } }
     t +=
         R"(bodies { name: "disk" material: "solid" shape { ball { center { x: 0.025 y: 0.006 } radius: 0.005 } } )" +
         std::string(e.phase ? "initial_temperature: 300.55 " : "") + "}\n";
-  if (e.contact) t += "contact { stiffness: 1e5 damping: 1 }\n";
+  if (e.contact) {
+    switch (e.law) {
+      case Effects::Law::kSpringDashpot:
+        t += "contact { stiffness: 1e5 damping: 1 }\n";
+        break;
+      case Effects::Law::kSpringDashpotFromE:
+        t += "contact { stiffness: 1e5 restitution: 0.5 }\n";
+        break;
+      case Effects::Law::kImpulses:
+        t += "contact { model: RESTITUTION restitution: 0.5 }\n";
+        break;
+      case Effects::Law::kRepulsion:
+        t += "contact { model: REPULSIVE repulsion { strength: 1 range: 1e-4 } }\n";
+        break;
+    }
+  }
   // A rubber-like plate 2 mm thick and 20 mm tall standing in the water, its lowest 2 mm held:
   // E = 8 kPa gives c_s = 2.2 m/s, so its own step bound (thesis eq. 33) is about the fluid's.
   if (e.plate)
@@ -180,6 +203,12 @@ int main(int argc, char** argv) {
       {"+ concentration", {.concentration = true}},
       {"+ rigid body", {.body = true}},
       {"+ body + contact", {.body = true, .contact = true}},
+      {"+ body + contact, damping from restitution",
+       {.body = true, .contact = true, .law = Effects::Law::kSpringDashpotFromE}},
+      {"+ body + contact by impulses",
+       {.body = true, .contact = true, .law = Effects::Law::kImpulses}},
+      {"+ body + repulsive contact",
+       {.body = true, .contact = true, .law = Effects::Law::kRepulsion}},
       {"+ heat + body + contact", {.heat = true, .body = true, .contact = true}},
       {"+ heat + phase change", {.heat = true, .body = true, .contact = true, .phase = true}},
       {"+ a drop of a second fluid", {.drop = true}},
