@@ -35,13 +35,21 @@
 // that comes closer sees C rise towards the wall and is shifted away from it: the walls keep
 // particles off them and the shift never points into them.
 //
-// Field values (Lind 2012 eq. 10): the velocity, and with the continuity density the density
-// (and its pressure), are moved to the shifted position by a first-order Taylor step,
-//   phi_i <- phi_i + dr_i . grad phi_i,  grad phi_i = sum_j V_j (phi_j - phi_i) grad_i W_ij
-// over fluid neighbours. Summation density needs no correction (it is recomputed from the
-// positions). The correction is not conservative (neither is shifting); it keeps the scheme
-// consistent to the order of the gradient estimate, where leaving it out would diffuse the
-// velocity by the shift every step.
+// The velocity is moved to the shifted position by a first-order Taylor step (Lind 2012
+// eq. 10),
+//   u_i <- u_i + dr_i . grad u_i,  grad u_i = sum_j V_j (u_j - u_i) grad_i W_ij
+// over fluid neighbours; leaving it out would diffuse the velocity by the shift every step.
+// The continuity density is not Taylor-corrected but changed as the particle's volume changes
+// when the shift moves it and its neighbours apart or together (the continuity equation of
+// the displacement, as the transport-velocity scheme integrates it with the velocity the
+// particles move with, Adami, Hu, Adams 2013):
+//   rho_i <- rho_i (1 - div dr_i),  div dr_i = sum_j V_j (dr_j - dr_i) . grad_i W_ij
+// over fluid, wall and rigid neighbours (dr = 0 for the last two). A particle of fixed mass
+// keeps m_i / rho_i equal to the room it has: with the Taylor step instead (the density as a
+// field sampled at the new position), shifting spread the particles near the free surface
+// without a pressure response, and the Colagrossi dam break's water rose (plateau +17%,
+// docs/particle_shifting.md). Summation density needs neither (it is recomputed from the
+// positions). Neither correction is conservative (nor is shifting).
 //
 // It runs in kEndOfStep, on u^{n+1}, rho^{n+1} at r^{n+1} with this step's neighbour lists
 // and pair kernel: the shifts of all owned particles are computed from unshifted positions
@@ -83,13 +91,14 @@ class ParticleShifting final : public Unit<D> {
         h_(h),
         wall_volume_(wall_volume),
         w0_(self_kernel),
-        gradient_(particles.template add<Vec<D>>("shifting_gradient", kName, false)) {}
+        gradient_(particles.template add<Vec<D>>("shifting_gradient", kName, false)),
+        shift_(particles.template add<Vec<D>>("shifting_displacement", kName, false)) {}
 
   const char* name() const override { return kName; }
   PhaseMask phases() const override { return phase_bit(StepPhase::kEndOfStep); }
   std::size_t scratch_bytes() const override {
-    return completeness_.capacity() * sizeof(double) + shift_.capacity() * sizeof(Vec<D>) +
-           dv_.capacity() * sizeof(Vec<D>) + drho_.capacity() * sizeof(double);
+    return completeness_.capacity() * sizeof(double) + dv_.capacity() * sizeof(Vec<D>) +
+           drho_.capacity() * sizeof(double);
   }
 
   void run(StepPhase, StepContext<D>& ctx) override {
@@ -97,7 +106,6 @@ class ParticleShifting final : public Unit<D> {
     ParticleStore<D>& s = ctx.particles;
     const std::size_t n = s.owned();
     completeness_.resize(n);
-    shift_.resize(n);
     dv_.resize(n);
     drho_.resize(n);
     // The ghosts carry the velocity of the drift (u^{n+1/2}); the Taylor step reads u^{n+1}.
@@ -111,6 +119,10 @@ class ParticleShifting final : public Unit<D> {
       speed = ctx.comm.max(speed);  // an exact maximum: the same on every rank count
     }
     shifts(ctx, speed);
+    if (correct_density_) {
+      ctx.halo.update(s, {&shift_});  // the divergence reads the neighbours' shifts
+      volume_change(ctx);
+    }
     surface_ = 0;
     largest_ = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -118,7 +130,7 @@ class ParticleShifting final : public Unit<D> {
       s.x[i] += shift_[i];
       s.v[i] += dv_[i];
       if (correct_density_) {
-        s.rho[i] += drho_[i];
+        s.rho[i] *= 1.0 - drho_[i];
         s.p[i] = fluids_[s.material[i]].pressure(s.rho[i]);
       }
       if (completeness_[i] < threshold_) ++surface_;
@@ -161,14 +173,13 @@ class ParticleShifting final : public Unit<D> {
     }
   }
 
-  // dr_i with the free-surface treatment, and the Taylor corrections of u and rho.
+  // dr_i with the free-surface treatment, and the Taylor correction of u.
   void shifts(StepContext<D>& ctx, double max_speed) {
     ParticleStore<D>& s = ctx.particles;
     const NeighborList<D>& nl = ctx.neighbors;
     for (std::size_t i = 0; i < s.owned(); ++i) {
       shift_[i] = Vec<D>::Zero();
       dv_[i] = Vec<D>::Zero();
-      drho_[i] = 0;
       if (s.kind[i] != Kind::kFluid) continue;
       if (completeness_[i] - w0_ * s.m[i] / s.rho[i] < kIsolated) continue;
       const double speed = maximum_speed_ ? max_speed : s.v[i].norm();
@@ -190,11 +201,9 @@ class ParticleShifting final : public Unit<D> {
         if (!(n2 > 0)) continue;
         d -= (d.dot(normal) / n2) * normal;
       }
-      // Lind 2012 eq. 10: phi_i + dr_i . grad phi_i.
+      // Lind 2012 eq. 10: u_i + dr_i . grad u_i.
       const Vec<D> vi = s.v[i];
-      const double rhoi = s.rho[i];
       Vec<D> dv = Vec<D>::Zero();
-      double drho = 0;
       std::size_t k = 0;
       for (const std::uint32_t* jp = first; jp != fluid_end; ++jp, ++k) {
         const std::uint32_t j = *jp;
@@ -203,11 +212,36 @@ class ParticleShifting final : public Unit<D> {
         // V_j grad_i W_ij . dr_i
         const double g = s.m[j] / s.rho[j] * pv.dw[k] / r * (xi - s.x[j]).dot(d);
         dv += g * (s.v[j] - vi);
-        drho += g * (s.rho[j] - rhoi);
       }
       shift_[i] = d;
       dv_[i] = dv;
-      drho_[i] = drho;
+    }
+  }
+
+  // div dr_i (into drho_) over fluid, wall and rigid neighbours; walls and bodies do not shift.
+  void volume_change(StepContext<D>& ctx) {
+    ParticleStore<D>& s = ctx.particles;
+    const NeighborList<D>& nl = ctx.neighbors;
+    for (std::size_t i = 0; i < s.owned(); ++i) {
+      drho_[i] = 0;
+      if (s.kind[i] != Kind::kFluid) continue;
+      const Vec<D> xi = s.x[i], di = shift_[i];
+      const PairValues pv = ctx.pairs.of(nl, i);
+      const std::uint32_t* first = nl.begin(i);
+      const std::uint32_t* fluid_end = nl.fluid_end(i);
+      const std::uint32_t* end = nl.end(i);
+      double div = 0;
+      std::size_t k = 0;
+      for (const std::uint32_t* jp = first; jp != end; ++jp, ++k) {
+        const std::uint32_t j = *jp;
+        const double r = pv.r[k];
+        if (!(r > 0.0)) continue;
+        const bool fluid = jp < fluid_end;
+        const double vol = fluid ? s.m[j] / s.rho[j] : wall_volume_;
+        const Vec<D> dj = fluid ? shift_[j] : Vec<D>::Zero();
+        div += vol * pv.dw[k] / r * (xi - s.x[j]).dot(dj - di);
+      }
+      drho_[i] = div;
     }
   }
 
@@ -216,9 +250,10 @@ class ParticleShifting final : public Unit<D> {
   std::vector<FluidConstants> fluids_;
   double h_, wall_volume_, w0_;
   Column<Vec<D>>& gradient_;  // grad C_i, owned and ghosts
+  Column<Vec<D>>& shift_;     // dr_i, owned and ghosts
   std::vector<double> completeness_;
-  std::vector<Vec<D>> shift_, dv_;
-  std::vector<double> drho_;
+  std::vector<Vec<D>> dv_;
+  std::vector<double> drho_;  // div dr_i
   std::int64_t surface_ = 0;
   double largest_ = 0;
 };
