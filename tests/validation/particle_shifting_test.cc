@@ -301,8 +301,13 @@ TEST(ParticleShifting, DISABLED_FreeDropLowViscosity) {
     char jump[32] = "-", late[32] = "-";
     if (n > 0) std::snprintf(jump, sizeof jump, "%+.2f%%", 100 * (inside / n * Rn - 1));
     if (t.back() >= 2) std::snprintf(late, sizeof late, "%.3g", spurious);
-    const std::string outcome =
+    const std::string message =
         r.status == RunStatus::kCompleted ? "completed" : "stopped: " + r.message;
+    std::string outcome;  // a Markdown table cell: its bars escaped
+    for (const char ch : message) {
+      if (ch == '|') outcome += '\\';
+      outcome += ch;
+    }
     std::printf("| %s | %s (t = %.3f) | %s | %.3g | %s |\n", *shifting ? shifting : "without",
                 outcome.c_str(), r.time, jump, early, late);
   }
