@@ -32,8 +32,8 @@
 // Walls and bodies: dummy wall particles and rigid particles enter C and grad C like fluid
 // neighbours with the volume dx^D (as in the wall condition, Adami 2012). A wall lattice
 // continues the fluid's, so a fluid particle at its lattice distance sees no gradient, one
-// that comes closer sees C rise towards the wall and is shifted away from it: the walls keep
-// particles off them and the shift never points into them.
+// that comes closer sees C rise towards the wall and is shifted away from it: the walls' share
+// of the shift always points away from them, so they keep particles off them.
 //
 // The velocity is moved to the shifted position by a first-order Taylor step (Lind 2012
 // eq. 10),
