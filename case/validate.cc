@@ -30,6 +30,7 @@ std::vector<FieldError> validate_case(const v1::Case& c, const ValidationLimits&
   v.add(validate_surface_tension(c));
   v.run_settings();
   v.density_diffusion();
+  v.particle_shifting();
   v.probes();
   v.case_size();
   return v.reported();

@@ -53,6 +53,7 @@ class Validator {
   void open_boundaries();                                              // open_boundaries.cc
   void run_settings();                                                 // run_settings.cc
   void density_diffusion();                                            // density_diffusion.cc
+  void particle_shifting();                                            // particle_shifting.cc
   void probes();                                                       // probes.cc
   void case_size();                                                    // case_size.cc
 

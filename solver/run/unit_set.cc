@@ -8,6 +8,7 @@
 #include "solver/core/kernel.h"
 #include "solver/elastic/elastic_solid.h"
 #include "solver/physics/density_diffusion.h"
+#include "solver/physics/particle_shifting.h"
 #include "solver/physics/scalar_transport.h"
 #include "solver/physics/surface_tension.h"
 #include "solver/physics/wall_motion.h"
@@ -82,6 +83,11 @@ std::vector<std::unique_ptr<Unit<D>>> make_units(const UnitBuildContext<D>& b) {
   if (b.c.has_surface_tension())
     units.push_back(std::make_unique<SurfaceTension<D>>(b.c, b.materials, b.particles, b.h,
                                                         b.wall_volume, b.cfl_factor, b.wall_index));
+  // Last: it moves the particles at the end of the step, after every unit has read them.
+  if (b.c.fluid_model().has_particle_shifting())
+    units.push_back(std::make_unique<ParticleShifting<D>>(
+        b.c.fluid_model().particle_shifting(), b.fluids, b.particles, b.h, b.wall_volume,
+        b.self_kernel, b.c.fluid_model().density() == v1::CONTINUITY));
   return units;
 }
 

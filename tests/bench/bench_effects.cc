@@ -2,7 +2,8 @@
 // fluid only, + heat conduction, + concentration diffusion, + a rigid body, + contact, + heat
 // with bodies and contact, + phase change (the disk melting from its rim), + a drop of a second
 // fluid in place of the disk, + surface tension between the two fluids, the fluid with density
-// by the continuity equation without and with density diffusion, and for each the time
+// by the continuity equation without and with density diffusion, the fluid without the
+// transport velocity and with particle shifting instead of it, and for each the time
 // per step by unit and the per-particle storage by unit. A unit a scene does not use must show no
 // time and no storage.
 //
@@ -34,6 +35,8 @@ struct Effects {
     kImpulses,
     kRepulsion
   } law = Law::kSpringDashpot;
+  bool no_transport = false;           // without the transport velocity
+  bool shifting = false;               // particle shifting (LOCAL, A = 2) instead of it
 };
 
 std::string scene(double dx, const Effects& e) {
@@ -122,7 +125,10 @@ elastic_bodies { name: "plate" material: "rubber" shape { box { lo { x: 0.024 y:
                                           ? "density_diffusion { form: FOURTAKAS delta: 0.1 } "
                                           : "") +
                           "}\n"
-                    : "fluid_model { density: SUMMATION transport_velocity: true }\n";
+       : e.no_transport || e.shifting
+           ? "fluid_model { density: SUMMATION " +
+                 std::string(e.shifting ? "particle_shifting { } " : "") + "}\n"
+           : "fluid_model { density: SUMMATION transport_velocity: true }\n";
   t += R"(gravity { acceleration { y: -9.81 } }
 time { end_time: 1e9 }
 output { series_interval: 1e9 })";
@@ -217,6 +223,8 @@ int main(int argc, char** argv) {
       {"+ heat + elastic plate (thermal FSI)", {.heat = true, .plate = true}},
       {"continuity density", {.continuity = true}},
       {"continuity + density diffusion", {.continuity = true, .density_diffusion = true}},
+      {"shifting: no transport velocity", {.no_transport = true}},
+      {"shifting: on", {.shifting = true}},
   };
   for (const auto& v : variants) {
     if (!only.empty() && std::string(v.label).find(only) == std::string::npos) continue;

@@ -89,6 +89,37 @@ TEST(CaseValidation, DensityDiffusionNeedsContinuityOneFluidAndDeltaInRange) {
       << dump(errs);
 }
 
+TEST(CaseValidation, ParticleShiftingCoefficientsAndWhatItRefuses) {
+  const std::string ps = "fluid_model { particle_shifting { ";
+  EXPECT_TRUE(errors_of(ps + "} }").empty()) << dump(errors_of(ps + "} }"));
+  EXPECT_TRUE(errors_of(ps + "coefficient: 6 surface_threshold: 0.9 speed: MAXIMUM } }").empty());
+  for (const char* bad : {"coefficient: 0", "coefficient: -1", "coefficient: 11"}) {
+    const auto errs = errors_of(ps + bad + " } }");
+    EXPECT_TRUE(has_error(errs, "fluid_model.particle_shifting.coefficient", "must be in (0, 10]"))
+        << bad << ": " << dump(errs);
+  }
+  for (const char* bad : {"surface_threshold: 0.5", "surface_threshold: 1.01"}) {
+    const auto errs = errors_of(ps + bad + " } }");
+    EXPECT_TRUE(
+        has_error(errs, "fluid_model.particle_shifting.surface_threshold", "must be in (0.5, 1]"))
+        << bad << ": " << dump(errs);
+  }
+  auto errs = errors_of("fluid_model { transport_velocity: true particle_shifting { } }");
+  EXPECT_TRUE(has_error(errs, "fluid_model.particle_shifting",
+                        "cannot be combined with fluid_model.transport_velocity"))
+      << dump(errs);
+  errs = errors_of(ps + "} }\nmaterials { name: \"air\" density: 1 eos { sound_speed: 10 } }");
+  EXPECT_TRUE(
+      has_error(errs, "fluid_model.particle_shifting", "one fluid material; the case has 2"))
+      << dump(errs);
+  errs = errors_of(ps +
+                   "} }\nopen_boundaries { name: \"out\" kind: OUTFLOW material: \"water\" "
+                   "region { lo { x: 1.8 y: 0 } hi { x: 2 y: 2 } } direction { x: 1 } }");
+  EXPECT_TRUE(
+      has_error(errs, "fluid_model.particle_shifting", "cannot be combined with open_boundaries"))
+      << dump(errs);
+}
+
 TEST(CaseValidation, OutputIntervalBoundsTheSnapshotCount) {
   // end_time 1 / interval 1e-9: a billion snapshot times would be stored before the run.
   EXPECT_TRUE(
