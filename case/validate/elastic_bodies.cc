@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "case/anisotropy.h"
 #include "case/estimate.h"
 #include "case/lattice.h"
 
@@ -114,6 +115,8 @@ void Validator::elastic_body(const v1::ElasticBody& b, const std::string& f) {
           "an elastic body needs a constraint or a fluid: this body has no constraint and "
           "the case no fluid region");
 
+  if (b.has_anisotropy()) anisotropy(b, f);
+
   vec(b.initial_velocity(), cat(f, "initial_velocity"));
   velocity_field(b.initial_velocity_field(), cat(f, "initial_velocity_field"), true);
   if (b.ignore_gravity() && !c_.has_gravity())
@@ -183,9 +186,10 @@ std::vector<Validator::ConstraintCheck> Validator::constraint_checks(const Latti
         k.part = std::make_unique<BodyInRegion>(*k.body, *k.region, *k.claims);
         k.field = cat(idx(cat(idx("elastic_bodies", i), "constraints"), j), "region");
         k.what = what;
+        k.spec = b.has_anisotropy() ? elastic_lattice_spec(c_, b) : spec;
         const auto* points = body->explicit_points();
         k.need = points ? static_cast<double>(points->size()) * (k.part->cost() + kLatticePointWork)
-                        : walk_work(*k.part, spec, domain);
+                        : walk_work(*k.part, k.spec, domain);
         out.push_back(std::move(k));
       }
     }
@@ -200,7 +204,7 @@ void Validator::check_constraint(const ConstraintCheck& k, const LatticeSpec& sp
   bool exact = true, holds = false;
   const auto* points = k.body->explicit_points();
   if (points == nullptr) {
-    const PointCount n = count_lattice_points(*k.part, spec, domain, domain, budget);
+    const PointCount n = count_lattice_points(*k.part, k.spec, domain, domain, budget);
     exact = n.exact;
     holds = n.points >= 1;
   } else {

@@ -48,6 +48,7 @@ class Validator {
   void contact();                                                      // bodies.cc
   void elastic_body(const v1::ElasticBody& b, const std::string& f);   // elastic_bodies.cc
   void periodic_seam(const v1::ElasticBody& b, const std::string& f);  // elastic_bodies.cc
+  void anisotropy(const v1::ElasticBody& b, const std::string& f);     // anisotropy.cc
   void phase_transitions();                                            // phase_transitions.cc
   void thermal();                                                      // thermal.cc
   void open_boundaries();                                              // open_boundaries.cc
@@ -104,7 +105,8 @@ class Validator {
     std::shared_ptr<const std::vector<std::shared_ptr<const Shape>>> claims;
     std::unique_ptr<Shape> part;  // the body's points in the region, claims taken out
     std::string field, what;
-    double need = 0;  // work to test every point
+    double need = 0;   // work to test every point
+    LatticeSpec spec;  // the body's lattice (stretched for an anisotropic body)
   };
   std::vector<ConstraintCheck> constraint_checks(const LatticeSpec& spec, const Aabb& domain) const;
   void check_constraint(const ConstraintCheck& k, const LatticeSpec& spec, const Aabb& domain,
