@@ -99,6 +99,10 @@ class AnisotropicKernel {
     const Vec<D> eta = G * r;
     const double q = eta.norm();
     if (!(q > 0) || !(q < kSupport)) return Vec<D>::Zero();
+    return grad_at(G, det_G, eta, q);
+  }
+  // The same from eta = G r and q = |eta| (0 < q < kSupport) already at hand.
+  Vec<D> grad_at(const Mat<D>& G, double det_G, const Vec<D>& eta, double q) const {
     return (det_G * base_.dW(q) / q) * (G.transpose() * eta);
   }
   // P-II eqs. 16-17: the pair's symmetrised kernel and its gradient with respect to r_i, r_ij =

@@ -104,6 +104,7 @@ class ReferenceNeighbors {
     const Kind* kind = s.kind.data();
     const double* m = s.m.data();
     const std::uint16_t* mat = s.material.data();
+    const double s2 = AK::kSupport * AK::kSupport;
     for (std::size_t a = 0; a < n; ++a) {
       start_[a] = static_cast<std::uint32_t>(pairs_.size());
       if (kind[a] != Kind::kElastic) continue;
@@ -115,6 +116,17 @@ class ReferenceNeighbors {
         const std::uint32_t b = *jp;
         if (kind[b] != Kind::kElastic || body[b] != ba) continue;
         const Vec<D> Xab = Xa - X[b];
+        if (G[b] == Ga) {
+          // One map for both (a body's own): the symmetrised gradient is the particle's, since
+          // (g + g) / 2 = g to the bit; one product and one kernel derivative per pair, which
+          // matters since the list holds about r times the ellipse's pairs.
+          const Vec<D> eta = Ga * Xab;
+          const double q2 = eta.squaredNorm();
+          if (!(q2 < s2) || q2 == 0.0) continue;
+          const double V0b = m[b] * inv_rho0[mat[b]];
+          pairs_.push_back({b, V0b * kernel.grad_at(Ga, det_a, eta, std::sqrt(q2))});
+          continue;
+        }
         if (Xab.squaredNorm() == 0.0 || !kernel.in_support(Ga, G[b], Xab)) continue;
         const double V0b = m[b] * inv_rho0[mat[b]];
         pairs_.push_back({b, V0b * kernel.grad_pair(Ga, det_a, G[b], G[b].determinant(), Xab)});
