@@ -9,7 +9,7 @@
 
 namespace sph::case_validation {
 
-void Validator::anisotropy(const v1::ElasticBody& b, const std::string& f) {
+void Validator::anisotropy(const v1::ElasticBody& b, const std::string& f, bool shape_ok) {
   const std::string g = cat(f, "anisotropy");
   const int d = c_.dimension();
   const double r = b.anisotropy().ratio();
@@ -28,7 +28,7 @@ void Validator::anisotropy(const v1::ElasticBody& b, const std::string& f) {
   else
     axis_ok = true;
   // Whole layers through the thickness: the lattice puts one particle per dx across it.
-  if (axis_ok && b.has_shape() && d >= 2 && d <= 3 && c_.dx() > 0 && finite(c_.dx())) {
+  if (axis_ok && shape_ok && d >= 2 && d <= 3 && c_.dx() > 0 && finite(c_.dx())) {
     if (b.shape().has_points()) {
       error(cat(f, "shape.points"), "an anisotropic body needs an interior to fill");
     } else {

@@ -73,12 +73,14 @@ void Validator::elastic_body(const v1::ElasticBody& b, const std::string& f) {
       }
   }
 
+  bool shape_ok = false;
   if (!b.has_shape()) {
     error(cat(f, "shape"), "is required");
   } else {
     const std::size_t before = errors_.size();
     shape(b.shape(), cat(f, "shape"), true);
-    if (errors_.size() == before && c_.has_domain()) periodic_seam(b, f);
+    shape_ok = errors_.size() == before;
+    if (shape_ok && c_.has_domain()) periodic_seam(b, f);
   }
 
   // A SOLID material with both elastic constants (their ranges are checked with the
@@ -115,7 +117,7 @@ void Validator::elastic_body(const v1::ElasticBody& b, const std::string& f) {
           "an elastic body needs a constraint or a fluid: this body has no constraint and "
           "the case no fluid region");
 
-  if (b.has_anisotropy()) anisotropy(b, f);
+  if (b.has_anisotropy()) anisotropy(b, f, shape_ok);
 
   vec(b.initial_velocity(), cat(f, "initial_velocity"));
   velocity_field(b.initial_velocity_field(), cat(f, "initial_velocity_field"), true);

@@ -48,7 +48,6 @@ class Validator {
   void contact();                                                      // bodies.cc
   void elastic_body(const v1::ElasticBody& b, const std::string& f);   // elastic_bodies.cc
   void periodic_seam(const v1::ElasticBody& b, const std::string& f);  // elastic_bodies.cc
-  void anisotropy(const v1::ElasticBody& b, const std::string& f);     // anisotropy.cc
   void phase_transitions();                                            // phase_transitions.cc
   void thermal();                                                      // thermal.cc
   void open_boundaries();                                              // open_boundaries.cc
@@ -92,6 +91,10 @@ class Validator {
   void elastic_constants(const v1::Material& m, const std::string& f);
   void plasticity(const v1::Material& m, const std::string& f);
   void transport_properties(const std::string& name, const std::string& field);
+
+  // anisotropy.cc, from elastic_body: ElasticBody.anisotropy; shape_ok: the body's shape passed
+  // its checks (it may be compiled).
+  void anisotropy(const v1::ElasticBody& b, const std::string& f, bool shape_ok);
 
   // case_size.cc
   void regions_in_domain();

@@ -918,6 +918,12 @@ TEST(CaseValidation, ElasticAnisotropy) {
   errs = validate_case(c);
   EXPECT_TRUE(has_error(errs, "elastic_bodies[0].shape", "not a whole number of dx = 0.1 (2.5"))
       << dump(errs);
+  // A broken shape is reported by the shape's checks; the anisotropy's does not compile it.
+  c = parse_case_text(std::string(kNoFluid) + kRubber + body + "ratio: 2 } }");
+  c.mutable_elastic_bodies(0)->mutable_shape()->mutable_box()->mutable_hi()->set_y(0.55);
+  errs = validate_case(c);
+  EXPECT_FALSE(errs.empty());
+  EXPECT_FALSE(has_error(errs, "elastic_bodies[0].shape", "whole number")) << dump(errs);
   // Not yet coupled: fluid, heat, hourglass control.
   errs = validate_case(parse_case_text(std::string(kBase) + kRubber + body + "ratio: 2 } }"));
   EXPECT_TRUE(has_error(errs, "elastic_bodies[0].anisotropy", "cannot be coupled with fluid"))
