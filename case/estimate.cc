@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "case/anisotropy.h"
 #include "case/case_limits.h"
 #include "case/geometry.h"
 #include "case/lattice.h"
@@ -126,9 +127,11 @@ enum RegionKind { kWallRegion, kBodyRegion, kElasticRegion, kBufferRegion, kFlui
 struct Region {
   std::unique_ptr<Shape> shape;
   RegionKind kind;
-  int claimed_by = 0;  // the claiming shapes before it
-  double cost = 0;     // of one test at a lattice point, claims included
-  double need = 0;     // work to test every lattice point
+  int claimed_by = 0;                // the claiming shapes before it
+  double cost = 0;                   // of one test at a lattice point, claims included
+  double need = 0;                   // work to test every lattice point
+  LatticeSpec spec = LatticeSpec{};  // its lattice (an anisotropic elastic body's is stretched)
+  bool anisotropic = false;
 };
 
 }  // namespace
@@ -165,7 +168,8 @@ CaseEstimate estimate_case(const v1::Case& c) {
   CaseEstimate e;
   const int d = c.dimension();
   const double dx = c.dx();
-  const double rc_over_dx = kernel_support_radius(c) / dx;
+  // The lists reach the search radius: the longest semi-axis of an anisotropic body's support.
+  const double rc_over_dx = search_radius(c) / dx;
   const double shell = default_shell_thickness(c);
   LatticeSpec spec{d, dx, to_point(c.lattice_origin())};
   Aabb clip{to_point(c.domain().lo()), to_point(c.domain().hi())};
@@ -179,8 +183,11 @@ CaseEstimate estimate_case(const v1::Case& c) {
     regions.push_back({compile_shape(w.shape(), d, shell), kWallRegion});
   for (const auto& b : c.bodies())
     regions.push_back({compile_shape(b.shape(), d, shell), kBodyRegion});
-  for (const auto& b : c.elastic_bodies())
+  for (const auto& b : c.elastic_bodies()) {
     regions.push_back({compile_shape(b.shape(), d, shell), kElasticRegion});
+    regions.back().spec = elastic_lattice_spec(c, b);
+    regions.back().anisotropic = is_anisotropic(b);
+  }
   for (const auto& o : c.open_boundaries()) {
     v1::Shape box;
     *box.mutable_box() = o.region();
@@ -188,6 +195,8 @@ CaseEstimate estimate_case(const v1::Case& c) {
   }
   for (const auto& f : c.fluids())
     regions.push_back({compile_shape(f.shape(), d, shell), kFluidRegion});
+  for (Region& r : regions)
+    if (!r.anisotropic) r.spec = spec;
   ClaimIndex index(clip, d);
   for (std::size_t i = 0; i < regions.size();) {
     std::size_t end = i;
@@ -197,7 +206,7 @@ CaseEstimate estimate_case(const v1::Case& c) {
       r.claimed_by = index.size();
       r.cost = r.shape->cost() +
                (r.claimed_by > 0 ? index.max_cost(r.shape->bounds().intersected(clip)) : 0.0);
-      r.need = walk_work(Claimed(*r.shape, index, r.claimed_by, r.cost), spec, clip);
+      r.need = walk_work(Claimed(*r.shape, index, r.claimed_by, r.cost), r.spec, clip);
     }
     if (regions[i].kind != kFluidRegion)
       for (std::size_t k = i; k < end; ++k) index.add(regions[k].shape.get());
@@ -210,15 +219,21 @@ CaseEstimate estimate_case(const v1::Case& c) {
     const Region& r = regions[k];
     double n = 0;
     if (share[k] >= r.cost + kLatticePointWork || r.need == 0) {
-      n = count_lattice_points(Claimed(*r.shape, index, r.claimed_by, r.cost), spec, clip,
+      n = count_lattice_points(Claimed(*r.shape, index, r.claimed_by, r.cost), r.spec, clip,
                                share[k]);
     } else if (share[k] >= r.shape->cost() + kLatticePointWork) {
       // Too little for the claims (a thousand regions over one huge polygon): the region alone.
-      n = count_lattice_points(*r.shape, spec, clip, share[k]);
+      n = count_lattice_points(*r.shape, r.spec, clip, share[k]);
     } else {
       // Not even one test: every lattice point of its bounds.
-      n = lattice_points_in(r.shape->bounds().intersected(clip), spec);
+      n = lattice_points_in(r.shape->bounds().intersected(clip), r.spec);
     }
+    if (r.kind == kElasticRegion)
+      // What the body would take resolved isotropically (docs/asph.md: what ASPH saves).
+      e.elastic_isotropic_particles +=
+          r.anisotropic ? count_lattice_points(Claimed(*r.shape, index, r.claimed_by, r.cost), spec,
+                                               clip, share[k])
+                        : n;
     (r.kind == kWallRegion      ? e.wall_particles
      : r.kind == kBodyRegion    ? e.rigid_particles
      : r.kind == kElasticRegion ? e.elastic_particles

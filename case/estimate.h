@@ -15,6 +15,9 @@ struct CaseEstimate {
   double wall_particles = 0;
   double rigid_particles = 0;
   double elastic_particles = 0;
+  // The elastic bodies' particles were every one resolved isotropically (spacing dx): above
+  // elastic_particles by what anisotropic resolution (ElasticBody.anisotropy) saves.
+  double elastic_isotropic_particles = 0;
   double total() const {
     return fluid_particles + wall_particles + rigid_particles + elastic_particles;
   }

@@ -31,8 +31,9 @@ std::int64_t to_index(double v) {
 IndexRange index_range(const Aabb& box, const LatticeSpec& s) {
   IndexRange r;
   for (int a = 0; a < s.dim; ++a) {
-    r.lo[a] = to_index(std::ceil((box.lo[a] - s.origin[a]) / s.dx - 0.5));
-    r.hi[a] = to_index(std::floor((box.hi[a] - s.origin[a]) / s.dx - 0.5));
+    const double step = s.dx * s.stretch[a];
+    r.lo[a] = to_index(std::ceil((box.lo[a] - s.origin[a]) / step - 0.5));
+    r.hi[a] = to_index(std::floor((box.hi[a] - s.origin[a]) / step - 0.5));
   }
   return r;
 }
@@ -127,9 +128,10 @@ void choose_runs(AxisSample (&axes)[3], double target) {
 }  // namespace
 
 Point3 lattice_point(const LatticeSpec& s, std::int64_t i, std::int64_t j, std::int64_t k) {
-  return {s.origin.x() + (static_cast<double>(i) + 0.5) * s.dx,
-          s.origin.y() + (static_cast<double>(j) + 0.5) * s.dx,
-          s.dim == 3 ? s.origin.z() + (static_cast<double>(k) + 0.5) * s.dx : 0.0};
+  return {
+      s.origin.x() + (static_cast<double>(i) + 0.5) * (s.dx * s.stretch.x()),
+      s.origin.y() + (static_cast<double>(j) + 0.5) * (s.dx * s.stretch.y()),
+      s.dim == 3 ? s.origin.z() + (static_cast<double>(k) + 0.5) * (s.dx * s.stretch.z()) : 0.0};
 }
 
 bool inside_box(const Point3& p, const Aabb& box, int dim) {

@@ -1,5 +1,6 @@
 #pragma once
-// Placing particles: the cell-centred lattice x = origin + (i + 1/2) dx filled inside shapes.
+// Placing particles: the cell-centred lattice x = origin + (i + 1/2) dx filled inside shapes
+// (dx stretch[a] along axis a where a lattice is stretched).
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -12,6 +13,9 @@ struct LatticeSpec {
   int dim = 2;
   double dx = 1.0;
   Point3 origin = Point3::Zero();
+  // The spacing along axis a is dx stretch[a]: 1 everywhere but along the surface of an
+  // anisotropically resolved elastic body (case/anisotropy.h).
+  Point3 stretch = Point3::Ones();
 };
 
 // Calls fn for every lattice point inside `shape` and inside `clip`, in a fixed order

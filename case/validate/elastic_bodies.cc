@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "case/anisotropy.h"
 #include "case/estimate.h"
 #include "case/lattice.h"
 
@@ -72,12 +73,14 @@ void Validator::elastic_body(const v1::ElasticBody& b, const std::string& f) {
       }
   }
 
+  bool shape_ok = false;
   if (!b.has_shape()) {
     error(cat(f, "shape"), "is required");
   } else {
     const std::size_t before = errors_.size();
     shape(b.shape(), cat(f, "shape"), true);
-    if (errors_.size() == before && c_.has_domain()) periodic_seam(b, f);
+    shape_ok = errors_.size() == before;
+    if (shape_ok && c_.has_domain()) periodic_seam(b, f);
   }
 
   // A SOLID material with both elastic constants (their ranges are checked with the
@@ -113,6 +116,8 @@ void Validator::elastic_body(const v1::ElasticBody& b, const std::string& f) {
     error(cat(f, "constraints"),
           "an elastic body needs a constraint or a fluid: this body has no constraint and "
           "the case no fluid region");
+
+  if (b.has_anisotropy()) anisotropy(b, f, shape_ok);
 
   vec(b.initial_velocity(), cat(f, "initial_velocity"));
   velocity_field(b.initial_velocity_field(), cat(f, "initial_velocity_field"), true);
@@ -183,9 +188,10 @@ std::vector<Validator::ConstraintCheck> Validator::constraint_checks(const Latti
         k.part = std::make_unique<BodyInRegion>(*k.body, *k.region, *k.claims);
         k.field = cat(idx(cat(idx("elastic_bodies", i), "constraints"), j), "region");
         k.what = what;
+        k.spec = b.has_anisotropy() ? elastic_lattice_spec(c_, b) : spec;
         const auto* points = body->explicit_points();
         k.need = points ? static_cast<double>(points->size()) * (k.part->cost() + kLatticePointWork)
-                        : walk_work(*k.part, spec, domain);
+                        : walk_work(*k.part, k.spec, domain);
         out.push_back(std::move(k));
       }
     }
@@ -200,7 +206,7 @@ void Validator::check_constraint(const ConstraintCheck& k, const LatticeSpec& sp
   bool exact = true, holds = false;
   const auto* points = k.body->explicit_points();
   if (points == nullptr) {
-    const PointCount n = count_lattice_points(*k.part, spec, domain, domain, budget);
+    const PointCount n = count_lattice_points(*k.part, k.spec, domain, domain, budget);
     exact = n.exact;
     holds = n.points >= 1;
   } else {

@@ -93,6 +93,10 @@ class Validator {
   void plasticity(const v1::Material& m, const std::string& f);
   void transport_properties(const std::string& name, const std::string& field);
 
+  // anisotropy.cc, from elastic_body: ElasticBody.anisotropy; shape_ok: the body's shape passed
+  // its checks (it may be compiled).
+  void anisotropy(const v1::ElasticBody& b, const std::string& f, bool shape_ok);
+
   // case_size.cc
   void regions_in_domain();
   // elastic_bodies.cc: whether each constraint region of an elastic body holds particles of
@@ -105,7 +109,8 @@ class Validator {
     std::shared_ptr<const std::vector<std::shared_ptr<const Shape>>> claims;
     std::unique_ptr<Shape> part;  // the body's points in the region, claims taken out
     std::string field, what;
-    double need = 0;  // work to test every point
+    double need = 0;   // work to test every point
+    LatticeSpec spec;  // the body's lattice (stretched for an anisotropic body)
   };
   std::vector<ConstraintCheck> constraint_checks(const LatticeSpec& spec, const Aabb& domain) const;
   void check_constraint(const ConstraintCheck& k, const LatticeSpec& spec, const Aabb& domain,

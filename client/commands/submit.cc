@@ -46,6 +46,7 @@ int print_dry_run(const GlobalOptions& g, const v1::Case& c, const std::string& 
     f["wall_particles"].set_number_value(e.wall_particles);
     f["rigid_particles"].set_number_value(e.rigid_particles);
     f["elastic_particles"].set_number_value(e.elastic_particles);
+    f["elastic_isotropic_particles"].set_number_value(e.elastic_isotropic_particles);
     f["total_particles"].set_number_value(e.total());
     f["initial_dt"].set_number_value(e.initial_dt);
     f["dt_limited_by"].set_string_value(e.dt_limited_by);
@@ -59,6 +60,12 @@ int print_dry_run(const GlobalOptions& g, const v1::Case& c, const std::string& 
   std::printf("  particles:  %.0f fluid, %.0f wall, %.0f rigid, %.0f elastic, %.0f total\n",
               e.fluid_particles, e.wall_particles, e.rigid_particles, e.elastic_particles,
               e.total());
+  if (e.elastic_isotropic_particles != e.elastic_particles)
+    std::printf(
+        "  anisotropic elastic bodies: %.0f particles, %.0f if resolved isotropically "
+        "(%.1f%% fewer)\n",
+        e.elastic_particles, e.elastic_isotropic_particles,
+        100.0 * (1.0 - e.elastic_particles / e.elastic_isotropic_particles));
   std::printf("  time step:  %.4g s at rest (%s)\n", e.initial_dt, e.dt_limited_by.c_str());
   std::printf("  steps:      about %.0f to t = %g s\n", e.steps, c.time().end_time());
   std::printf("  memory:     about %s over all ranks\n", format_bytes(e.bytes).c_str());

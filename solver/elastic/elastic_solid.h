@@ -75,6 +75,16 @@
 // constraint exerts on the body's particles it holds, -(internal + fluid + gravity forces on
 // them), summed exactly: the reaction force of a prescribed-motion test.
 //
+// Anisotropic bodies (ElasticBody.anisotropy, ASPH: thesis sec. 3.5, P-II; docs/asph.md): each
+// particle of the run keeps its kernel map G (column "elastic_kernel_map", ghosted; I / h for
+// isotropic bodies, a plate's map of smoothing lengths ratio h along its surface and h through
+// its thickness for anisotropic ones), the reference pairs are those in either particle's
+// elliptical support with the symmetrised gradient of P-II eqs. 16-17
+// (ReferenceNeighbors::build_anisotropic), and the stress enters the momentum sum as P B^T
+// (P-II eq. 32; B is not symmetric for an elliptical kernel). The run's search radius covers the
+// longest semi-axis (case/anisotropy.h). The time step stays eq. 33 with the run's h, which is
+// the smoothing length through the thickness, the smallest: the thickness direction bounds it.
+//
 // Guard: a particle whose correction matrix is singular (it lost the reference neighbours that
 // span the space: a torn body) or whose F is inverted (det F <= 0) stops the run, naming the
 // body, the particle and the place.
@@ -86,6 +96,7 @@
 #include <utility>
 #include <vector>
 
+#include "case/anisotropy.h"
 #include "case/motion.h"
 #include "solver/diagnostics/stability_guards.h"
 #include "solver/elastic/elastic_law.h"
@@ -196,6 +207,13 @@ class ElasticSolid final : public Unit<D> {
   std::vector<double> maxima_ = std::vector<double>(2);  // |a|max, |v|max (reduced in place)
 
   ReferenceNeighbors<D> refs_;
+  // Anisotropic bodies only (null / empty otherwise): each particle's kernel map G (persistent,
+  // ghosted), each body's G (Identity / h for an isotropic one), the kernel of unit h.
+  Column<Mat<D>>* kernel_map_ = nullptr;
+  std::vector<Mat<D>> body_map_;
+  AnisotropicKernel<D, K> anisotropic_kernel_;
+  // Builds refs_ over the lists now (isotropic or anisotropic).
+  void build_references(const StepContext<D>& ctx);
   Column<Vec<D>>& X_;                 // reference position (persistent, ghosted)
   Column<std::uint16_t>& body_;       // elastic body (persistent, ghosted)
   Column<std::int32_t>& constraint_;  // constraint of the body holding it, -1 free
@@ -290,6 +308,15 @@ ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
       constrained_ = true;
     }
     bodies_.push_back(std::move(body));
+    if (is_anisotropic(e)) {
+      // P-II: h2 = h through the thickness, h1 = r h2 along the surface.
+      Vec<D> n = Vec<D>::Zero();
+      const int axis = thickness_axis(e, D);  // validated: a coordinate axis
+      n[axis >= 0 ? axis : D - 1] = 1.0;
+      body_map_.push_back(plate_anisotropy_map<D>(e.anisotropy().ratio() * h_, h_, n));
+    } else {
+      body_map_.push_back(Mat<D>::Identity() / h_);
+    }
     const int m = material_index(b.materials, e.material());
     if (m < 0) continue;  // validation names the missing material
     const MaterialParams& mp = b.materials[static_cast<std::size_t>(m)];
@@ -319,6 +346,11 @@ ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
     alpha_->set_ghost(false);
   }
   constraints_ = paths_.size();
+  if (std::any_of(c.elastic_bodies().begin(), c.elastic_bodies().end(),
+                  [](const v1::ElasticBody& e) { return is_anisotropic(e); }))
+    kernel_map_ = &b.particles.template add<Mat<D>>("elastic_kernel_map", kName, true);
+  else
+    body_map_.clear();
   if (constrained_ && !solid_v_) {
     reaction_ = &b.particles.template add<Vec<D>>("elastic_constraint_force", kName, true);
     reaction_->set_ghost(false);
@@ -346,10 +378,12 @@ void ElasticSolid<D, K>::initialize(std::size_t i, const SceneParticle& p) {
   }
   if (p.kind != Kind::kElastic) {
     constraint_[i] = -1;
+    if (kernel_map_) (*kernel_map_)[i] = Mat<D>::Identity() / h_;
     return;
   }
   for (int a = 0; a < D; ++a) X_[i][a] = p.x[a];
   body_[i] = static_cast<std::uint16_t>(p.elastic);
+  if (kernel_map_) (*kernel_map_)[i] = body_map_[static_cast<std::size_t>(p.elastic)];
   constraint_[i] = p.constraint;
 }
 
@@ -385,13 +419,22 @@ void ElasticSolid<D, K>::fail(const ParticleStore<D>& s, std::size_t i, const St
 }
 
 template <int D, class K>
+void ElasticSolid<D, K>::build_references(const StepContext<D>& ctx) {
+  if (kernel_map_)
+    refs_.build_anisotropic(ctx.particles, ctx.neighbors, X_.data(), body_.data(), inv_rho0_.data(),
+                            kernel_map_->data(), anisotropic_kernel_);
+  else
+    refs_.build(ctx.particles, ctx.neighbors, X_.data(), body_.data(), inv_rho0_.data(), kernel_);
+}
+
+template <int D, class K>
 void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
   ParticleStore<D>& s = ctx.particles;
   const std::size_t n = s.owned();
   const Kind* kind = s.kind.data();
   const Vec<D>* v = s.v.data();
   failure_.clear();
-  refs_.build(s, ctx.neighbors, X_.data(), body_.data(), inv_rho0_.data(), kernel_);
+  build_references(ctx);
   stresses(ctx, v);
   // Pass 2: the momentum equation, the fluid's force and gravity.
   const Vec<D> g = BodyForce<D>::damping_factor(ctx.t, gravity_ramp_) * gravity_;
@@ -450,6 +493,9 @@ void ElasticSolid<D, K>::stresses(StepContext<D>& ctx, const Vec<D>* v) {
       fail(s, i, ctx, buf);
     } else {
       const Mat<D> B = sums.moment.inverse();
+      // What the momentum sum multiplies the kernel gradient by: B, or B^T with anisotropic
+      // kernels (total_lagrangian.h, internal_force).
+      const Mat<D> Bg = kernel_map_ ? Mat<D>(B.transpose()) : B;
       const Mat<D> Fi = sums.position * B;
       const double J = Fi.determinant();
       if (!(J > 0)) {
@@ -463,10 +509,10 @@ void ElasticSolid<D, K>::stresses(StepContext<D>& ctx, const Vec<D>* v) {
       } else {
         F = Fi;
         if (metric_ && plastic_[mat[i]]) {
-          pb_[i] = plastic_stress(law, mat[i], i, F, sums.velocity * B) * B;
+          pb_[i] = plastic_stress(law, mat[i], i, F, sums.velocity * B) * Bg;
         } else {
           const Mat<D> S = second_piola<D>(law, F, sums.velocity * B);
-          pb_[i] = F * S * B;  // P B with P = F S (eq. 2.3)
+          pb_[i] = F * S * Bg;  // P B with P = F S (eq. 2.3)
           von_mises_[i] = von_mises(cauchy_stress<D>(law, F, S));
         }
         strain_[i] = equivalent_strain<D>(F);
@@ -690,7 +736,7 @@ void ElasticSolid<D, K>::hold_fluid_force(StepContext<D>& ctx) {
   if (ctx.dt == 0) {
     // The run is primed: the internal forces the first sub-step starts from, and its bound.
     failure_.clear();
-    refs_.build(s, ctx.neighbors, X_.data(), body_.data(), inv_rho0_.data(), kernel_);
+    build_references(ctx);
     internal_forces(ctx, solid_v_->data());
     substep_bound(s, ctx.comm, ctx.t);
   }
@@ -719,7 +765,7 @@ void ElasticSolid<D, K>::substeps(StepContext<D>& ctx) {
   }
   const int kappa = std::max(1, static_cast<int>(std::ceil(ratio)));
   const double ds = dt / kappa;
-  refs_.build(s, ctx.neighbors, X_.data(), body_.data(), inv_rho0_.data(), kernel_);
+  build_references(ctx);
   // The opening half kick of the fluid's force of t^n, then kick-drift-kick sub-steps (P-I
   // eqs. 36-38) of the internal forces and gravity.
   for (std::size_t i = 0; i < n; ++i) {

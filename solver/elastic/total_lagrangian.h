@@ -41,6 +41,7 @@
 
 #include <Eigen/LU>
 
+#include "solver/core/anisotropic_kernel.h"
 #include "solver/core/neighbor_list.h"
 #include "solver/core/particle_store.h"
 
@@ -82,6 +83,53 @@ class ReferenceNeighbors {
         const double r = std::sqrt(r2);
         const double V0b = m[b] * inv_rho0[mat[b]];
         pairs_.push_back({b, (V0b * kernel.dW(r) / r) * Xab});  // eq. 3.6
+      }
+    }
+    start_[n] = static_cast<std::uint32_t>(pairs_.size());
+  }
+
+  // As build(), for a run with anisotropic bodies (ASPH, solver/core/anisotropic_kernel.h):
+  // every elastic particle has its own kernel map G (isotropic ones I / h), a pair is a
+  // reference pair when X_ab lies in either particle's elliptical support, and its gradient is
+  // the symmetrised one of P-II eqs. 16-17 (thesis eq. 3.23),
+  //   grad0 W_ab = (det G_a w'(|G_a X_ab|) G_a^T G_a X_ab / |G_a X_ab| + (same with G_b)) / 2,
+  // antisymmetric in a and b as eq. 3.6 is.
+  template <class AK>
+  void build_anisotropic(const ParticleStore<D>& s, const NeighborList<D>& nl, const Vec<D>* X,
+                         const std::uint16_t* body, const double* inv_rho0, const Mat<D>* G,
+                         const AK& kernel) {
+    const std::size_t n = s.owned();
+    start_.resize(n + 1);
+    pairs_.clear();
+    const Kind* kind = s.kind.data();
+    const double* m = s.m.data();
+    const std::uint16_t* mat = s.material.data();
+    const double s2 = AK::kSupport * AK::kSupport;
+    for (std::size_t a = 0; a < n; ++a) {
+      start_[a] = static_cast<std::uint32_t>(pairs_.size());
+      if (kind[a] != Kind::kElastic) continue;
+      const Vec<D> Xa = X[a];
+      const std::uint16_t ba = body[a];
+      const Mat<D> Ga = G[a];
+      const double det_a = Ga.determinant();
+      for (const std::uint32_t* jp = nl.fluid_end(a); jp != nl.end(a); ++jp) {
+        const std::uint32_t b = *jp;
+        if (kind[b] != Kind::kElastic || body[b] != ba) continue;
+        const Vec<D> Xab = Xa - X[b];
+        if (G[b] == Ga) {
+          // One map for both (a body's own): the symmetrised gradient is the particle's, since
+          // (g + g) / 2 = g to the bit; one product and one kernel derivative per pair, which
+          // matters since the list holds about r times the ellipse's pairs.
+          const Vec<D> eta = Ga * Xab;
+          const double q2 = eta.squaredNorm();
+          if (!(q2 < s2) || q2 == 0.0) continue;
+          const double V0b = m[b] * inv_rho0[mat[b]];
+          pairs_.push_back({b, V0b * kernel.grad_at(Ga, det_a, eta, std::sqrt(q2))});
+          continue;
+        }
+        if (Xab.squaredNorm() == 0.0 || !kernel.in_support(Ga, G[b], Xab)) continue;
+        const double V0b = m[b] * inv_rho0[mat[b]];
+        pairs_.push_back({b, V0b * kernel.grad_pair(Ga, det_a, G[b], G[b].determinant(), Xab)});
       }
     }
     start_[n] = static_cast<std::uint32_t>(pairs_.size());
@@ -134,7 +182,9 @@ double moment_conditioning(const Mat<D>& M) {
 }
 
 // The internal force on particle a, sum_b V0_a V0_b (P_a B_a + P_b B_b) grad0 W_ab (eqs. 3.8,
-// 3.9), from the P B of a and its neighbours (ghosts included); divide by m_a for dv/dt.
+// 3.9), from the P B of a and its neighbours (ghosts included); divide by m_a for dv/dt. With
+// anisotropic kernels B is not symmetric and the corrected gradient is B^T grad0 W (thesis eqs.
+// 3.30-3.33: F = sum V0_b x_ba (x) B^T grad0 W_ab), so PB holds P B^T there (P-II eq. 32).
 template <int D>
 Vec<D> internal_force(const ReferenceNeighbors<D>& refs, std::size_t a, const Mat<D>* PB,
                       double V0a) {

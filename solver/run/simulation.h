@@ -22,6 +22,7 @@
 #include <optional>
 #include <string>
 
+#include "case/anisotropy.h"
 #include "case/estimate.h"
 #include "case/materials.h"
 #include "case/motion.h"

@@ -38,7 +38,10 @@ Simulation<D, K>::Simulation(const v1::Case& c, const Comm& comm, const RunOptio
       fluids_(make_fluid_table(mats_)),
       dx_(c.dx()),
       h_(smoothing_length(c)),  // h = dx by default (Fuchs 2021 Remark 8)
-      rc_(K::kSupport * h_),
+      // The kernel's support, or the longest semi-axis of an anisotropic elastic body's
+      // support (case/anisotropy.h): cells, ghosts and lists then reach its reference
+      // neighbours, whose pairs the elastic unit takes from the list (total_lagrangian.h).
+      rc_(std::max(K::kSupport * h_, search_radius(c))),
       skin_(neighbor_skin(c)),
       wall_volume_(std::pow(c.dx(), D)),
       kernel_(h_),

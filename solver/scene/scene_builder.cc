@@ -5,6 +5,7 @@
 #include <numbers>
 #include <unordered_set>
 
+#include "case/anisotropy.h"
 #include "case/estimate.h"
 #include "case/lattice.h"
 
@@ -140,8 +141,10 @@ void SceneBuilder::for_each(const std::function<void(const SceneParticle&)>& fn)
     const int mi = material_index(mats_, body.material());
     p.material = static_cast<std::uint16_t>(mi);
     p.rho = wall_rho_;  // a dummy density for the fluid (the wall condition overwrites it)
-    p.mass = mats_[static_cast<std::size_t>(mi)].rho0 * vol;
-    for_each_lattice_point(*elastic_[e], spec, clip, [&](const Point3& x) {
+    // An anisotropic body has its own lattice, stretched along its surface (case/anisotropy.h).
+    p.mass = mats_[static_cast<std::size_t>(mi)].rho0 * elastic_particle_volume(c_, body);
+    const LatticeSpec body_spec = elastic_lattice_spec(c_, body);
+    for_each_lattice_point(*elastic_[e], body_spec, clip, [&](const Point3& x) {
       for (const auto& w : walls_)
         if (w->contains(x)) return;
       for (const auto& b : bodies_)

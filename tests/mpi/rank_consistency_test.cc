@@ -794,6 +794,21 @@ TEST(RankConsistency, ElasticBodiesAcrossRanks) {
   check_rank_counts("elastic_fsi", fsi, 300, false);
 }
 
+// Anisotropic kernels (ASPH, docs/asph.md): the search radius grows to the longest semi-axis of
+// the elliptical support (r times the kernel's), the ghosts carry each particle's kernel map G,
+// and the reference pairs are those in either particle's ellipse. The plate with r = 4 at large
+// amplitude on 1/2/4 ranks.
+TEST(RankConsistency, AnisotropicElasticPlateAcrossRanks) {
+  auto plate = test::load_case("oscillating_plate_2d");
+  plate.set_dx(0.002);  // 10 particles through the thickness, 8 mm apart along the plate
+  plate.mutable_elastic_bodies(0)
+      ->mutable_initial_velocity_field()
+      ->mutable_beam_mode()
+      ->set_tip_velocity(2.8515);
+  plate.mutable_elastic_bodies(0)->mutable_anisotropy()->set_ratio(4);
+  check_rank_counts("asph_plate", plate, 300, false);
+}
+
 TEST(RankConsistency, ElasticBodiesResumeFromCheckpointOnAnyRankCount) {
   auto c = test::load_case("plate_under_water_2d");
   c.set_dx(0.005);

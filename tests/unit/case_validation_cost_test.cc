@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "case/anisotropy.h"
 #include "case/case_limits.h"
 #include "case/estimate.h"
 #include "case/lattice.h"
@@ -220,17 +221,22 @@ Counts exact_counts(const v1::Case& c) {
     return false;
   };
   auto count = [&](const Shape& s,
-                   const std::vector<const std::vector<std::unique_ptr<Shape>>*>& by) {
+                   const std::vector<const std::vector<std::unique_ptr<Shape>>*>& by,
+                   const LatticeSpec* own = nullptr) {
     double n = 0;
     const bool all = s.explicit_points() != nullptr;
-    for_each_lattice_point(s, spec, clip,
+    for_each_lattice_point(s, own ? *own : spec, clip,
                            [&](const Point3& p) { n += all || !taken(by, p) ? 1 : 0; });
     return n;
   };
   Counts n;
   for (const auto& w : walls) n.walls += count(*w, {});
   for (const auto& b : bodies) n.bodies += count(*b, {&walls});
-  for (const auto& b : elastic) n.elastic += count(*b, {&walls, &bodies});
+  for (std::size_t k = 0; k < elastic.size(); ++k) {
+    // An anisotropic body's own lattice (case/anisotropy.h).
+    const LatticeSpec own = elastic_lattice_spec(c, c.elastic_bodies(static_cast<int>(k)));
+    n.elastic += count(*elastic[k], {&walls, &bodies}, &own);
+  }
   for (const auto& o : buffers) n.fluids += count(*o, {&walls, &bodies, &elastic});
   for (const auto& f : c.fluids())
     n.fluids += count(*compile_shape(f.shape(), d, shell), {&walls, &bodies, &elastic, &buffers});

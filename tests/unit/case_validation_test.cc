@@ -909,6 +909,70 @@ thermal { initial_temperature: 300 }
       << dump(errs);
 }
 
+// Anisotropic resolution (ASPH, docs/asph.md): the ratio, the thickness direction, whole layers
+// of dx through the thickness, and what is not coupled yet, each named; the estimate counts the
+// stretched lattice and the isotropic equivalent.
+TEST(CaseValidation, ElasticAnisotropy) {
+  const std::string body = R"(elastic_bodies { name: "plate" material: "rubber"
+  shape { box { lo { x: 0 y: 0.9 } hi { x: 1.6 y: 1.1 } } }
+  constraints { region { box { lo { x: 0 y: 0.9 } hi { x: 0.4 y: 1.1 } } } }
+  anisotropy { )";
+  auto errors = [&](const std::string& aniso, const std::string& extra = "") {
+    return validate_case(
+        parse_case_text(std::string(kNoFluid) + kRubber + extra + body + aniso + " } }"));
+  };
+  auto errs = errors("ratio: 4");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  errs = errors("ratio: 2 thickness_direction { y: -1 }");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  EXPECT_TRUE(has_error(errors("ratio: nan"), "elastic_bodies[0].anisotropy.ratio", "finite"));
+  for (const char* bad : {"ratio: 0.5", "ratio: 0", "", "ratio: 17"}) {
+    errs = errors(bad);
+    EXPECT_TRUE(has_error(errs, "elastic_bodies[0].anisotropy.ratio", "must be in [1, 16]"))
+        << bad << ": " << dump(errs);
+  }
+  errs = errors("ratio: 2 thickness_direction { x: 1 y: 1 }");
+  EXPECT_TRUE(
+      has_error(errs, "elastic_bodies[0].anisotropy.thickness_direction", "a coordinate axis"))
+      << dump(errs);
+  errs = errors("ratio: 2 thickness_direction { z: 1 }");
+  EXPECT_TRUE(
+      has_error(errs, "elastic_bodies[0].anisotropy.thickness_direction", "a coordinate axis"))
+      << dump(errs);
+  // Along x the plate is 1.6 thick: 16 layers, fine; 0.25 thick along y is 2.5 layers.
+  errs = errors("ratio: 2 thickness_direction { x: 1 }");
+  EXPECT_FALSE(has_error(errs, "elastic_bodies[0].anisotropy.thickness_direction", ""))
+      << dump(errs);
+  EXPECT_FALSE(has_error(errs, "elastic_bodies[0].shape", "")) << dump(errs);
+  auto c = parse_case_text(std::string(kNoFluid) + kRubber + body + "ratio: 2 } }");
+  c.mutable_elastic_bodies(0)->mutable_shape()->mutable_box()->mutable_hi()->set_y(1.15);
+  errs = validate_case(c);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].shape", "not a whole number of dx = 0.1 (2.5"))
+      << dump(errs);
+  // A broken shape is reported by the shape's checks; the anisotropy's does not compile it.
+  c = parse_case_text(std::string(kNoFluid) + kRubber + body + "ratio: 2 } }");
+  c.mutable_elastic_bodies(0)->mutable_shape()->mutable_box()->mutable_hi()->set_y(0.55);
+  errs = validate_case(c);
+  EXPECT_FALSE(errs.empty());
+  EXPECT_FALSE(has_error(errs, "elastic_bodies[0].shape", "whole number")) << dump(errs);
+  // Not yet coupled: fluid, heat, hourglass control.
+  errs = validate_case(parse_case_text(std::string(kBase) + kRubber + body + "ratio: 2 } }"));
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].anisotropy", "cannot be coupled with fluid"))
+      << dump(errs);
+  c = parse_case_text(std::string(kNoFluid) + kRubber + body + "ratio: 2 } }");
+  c.mutable_materials(0)->set_hourglass_control(0.1);
+  errs = validate_case(c);
+  EXPECT_TRUE(has_error(errs, "materials[0].hourglass_control", "not supported with anisotropic"))
+      << dump(errs);
+  // Estimate: 1.6 / (4 dx) = 4 columns x 2 rows, isotropically 16 x 2.
+  c = parse_case_text(std::string(kNoFluid) + kRubber + body + "ratio: 4 } }");
+  const CaseEstimate e = estimate_case(c);
+  std::printf("anisotropic plate r = 4: %.0f particles, isotropic %.0f\n", e.elastic_particles,
+              e.elastic_isotropic_particles);
+  EXPECT_EQ(e.elastic_particles, 8);
+  EXPECT_EQ(e.elastic_isotropic_particles, 32);
+}
+
 // Elastic particles are counted like rigid ones (they take the lattice points of the fluid
 // they overlap), and the solid's step 0.6 h / c_s (thesis eq. 33 at rest) joins the fluid's.
 TEST(CaseValidation, ElasticBodyEstimate) {
