@@ -139,8 +139,11 @@ class WallBoundary {
       s_.p[w] = p1;
       s_.rho[w] = fluids_[first].density(p1);
       wall_fluid_[w] = static_cast<std::uint16_t>(first);
-      (*p2_)[w] = (msp_[second] + acc.dot(msrho_[second])) / msw_[second];
-      (*fluid2_)[w] = static_cast<std::uint16_t>(second);
+      // A second fluid whose particles all sit at the edge of the support (W rounded to 0)
+      // has no pressure to extrapolate: the first's stands for it.
+      const std::size_t other = w2 > 0.0 ? second : first;
+      (*p2_)[w] = other == first ? p1 : (msp_[other] + acc.dot(msrho_[other])) / msw_[other];
+      (*fluid2_)[w] = static_cast<std::uint16_t>(other);
       for (std::size_t m = 0; m < msw_.size(); ++m) {
         msw_[m] = msp_[m] = 0.0;
         msrho_[m].setZero();
