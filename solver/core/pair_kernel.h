@@ -8,14 +8,14 @@
 // vectorise (K::evaluate), and equal those the passes computed before to the bit
 // (r = |x_i - x_j|, K::evaluate = W and dW), so results are unchanged.
 // Three ways to keep them:
-//  - kCompact (the default): every pair evaluated once when the list is built and r, W and
-//    dW/dr kept in single precision (12 bytes a pair); each pass gets a particle's values
-//    widened to double. Each value carries a relative rounding of at most 2^-24 (6e-8; with
+//  - kTable (the default): every pair evaluated once when the list is built and r, W and
+//    dW/dr kept in double (24 bytes a pair), the values the passes computed before the table
+//    existed, to the bit.
+//  - kCompact: r, W and dW/dr kept in single precision (12 bytes a pair); each pass gets a
+//    particle's values widened to double (about 1 ns a pair and pass: 4-15% of a step,
+//    docs/effects.md). Each value carries a relative rounding of at most 2^-24 (6e-8; with
 //    Verlet lists W and dW/dr are those of the distance from the single-precision square),
-//    far below the discretisation error and the same on every rank count. Half the storage
-//    of kTable at about its speed (docs/effects.md).
-//  - kTable: r, W and dW/dr kept in double (24 bytes a pair), the values the passes computed
-//    before the table existed, to the bit.
+//    far below the discretisation error and the same on every rank count.
 //  - kStream: a particle's pairs evaluated into a scratch buffer each time a pass asks for
 //    them; no storage, each pass gathers and evaluates again. The same bits as kTable.
 #include <algorithm>
@@ -39,8 +39,8 @@ struct PairValues {
 template <int D>
 class PairKernel {
  public:
-  enum class Storage { kCompact, kTable, kStream };
-  explicit PairKernel(Storage storage = Storage::kCompact) : storage_(storage) {}
+  enum class Storage { kTable, kCompact, kStream };
+  explicit PairKernel(Storage storage = Storage::kTable) : storage_(storage) {}
 
   // Binds the table to nl as just built from the positions of s (which the passes then use
   // unchanged) and, with kTable or kCompact, evaluates every pair of the owned particles'
@@ -121,20 +121,27 @@ class PairKernel {
     const auto n = static_cast<std::size_t>(nl.end(i) - nl.begin(i));
     grow_scratch(n);
     if (storage_ == Storage::kCompact) {
-      const float* r32 = r32_.data() + nl.first(i);
-      const float* w = w32_.data() + nl.first(i);
-      const float* dw = dw32_.data() + nl.first(i);
-      double *r = r_.data(), *wd = w_.data(), *dwd = dw_.data();
-      for (std::size_t e = 0; e < n; ++e) {
-        r[e] = r32[e];
-        wd[e] = w[e];
-        dwd[e] = dw[e];
-      }
+      const std::size_t e0 = nl.first(i);
+      widen(r32_.data() + e0, r_.data(), n);
+      widen(w32_.data() + e0, w_.data(), n);
+      widen(dw32_.data() + e0, dw_.data(), n);
     } else {
       distances(nl, i, r_.data());
       evaluate_(kernel_, n, r_.data(), w_.data(), dw_.data());
     }
     return {r_.data(), w_.data(), dw_.data()};
+  }
+
+  // W of particle i's pairs alone, for the passes that read no more (density, the wall
+  // condition's weights): kCompact widens only them.
+  const double* weights(const NeighborList<D>& nl, std::size_t i) const {
+    if (storage_ != Storage::kCompact) return of(nl, i).w;
+    if (generation_ != nl.generation())
+      throw std::logic_error("pair kernel values are stale: prepare() after every build()");
+    const auto n = static_cast<std::size_t>(nl.end(i) - nl.begin(i));
+    grow_scratch(n);
+    widen(w32_.data() + nl.first(i), w_.data(), n);
+    return w_.data();
   }
 
   std::size_t bytes() const {
@@ -159,6 +166,10 @@ class PairKernel {
     r_.resize(n);
     w_.resize(n);
     dw_.resize(n);
+  }
+  // Separate arrays, one loop each, so that the conversion vectorises.
+  static void widen(const float* __restrict in, double* __restrict out, std::size_t n) {
+    for (std::size_t e = 0; e < n; ++e) out[e] = in[e];
   }
   // The first n values of the double scratch into the single-precision table at e0.
   void round_into(std::size_t n, std::size_t e0) {

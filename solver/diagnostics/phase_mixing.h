@@ -42,7 +42,7 @@ PhaseMixingScan phase_mixing(const ParticleStore<D>& s, const NeighborList<D>& n
     while (jp != end && (kind[*jp] != Kind::kFluid || mat[*jp] == mat[i])) ++jp;
     if (jp == end) continue;
     ++out.interface;
-    const double* w = pk.of(nl, i).w;
+    const double* w = pk.weights(nl, i);
     double foreign = 0, all = s.m[i] / s.rho[i] * w0;
     for (jp = list; jp != end; ++jp) {
       const std::uint32_t j = *jp;

@@ -44,7 +44,7 @@ SolidFractionScan solid_fraction(const ParticleStore<D>& s, const NeighborList<D
     const std::uint32_t* list = nl.begin(i);
     const std::uint32_t* solid = nl.fluid_end(i);
     if (solid == nl.end(i)) continue;
-    const double* w = pk.of(nl, i).w;
+    const double* w = pk.weights(nl, i);
     for (const std::uint32_t* jp = solid; jp != nl.end(i); ++jp) {
       const std::uint32_t j = *jp;
       // Walls are keys >= 0, rigid bodies < 0, and the elastic bodies one key below them all

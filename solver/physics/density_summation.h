@@ -17,7 +17,7 @@ class DensitySummation {
     for (std::size_t i = 0; i < s_.owned(); ++i) {
       if (s_.kind[i] != Kind::kFluid) continue;
       double sum = w0;
-      const double* g_w = pk.of(nl, i).w;
+      const double* g_w = pk.weights(nl, i);
       for (const std::uint32_t* j = nl.begin(i); j != nl.end(i); ++j, ++g_w) sum += *g_w;
       s_.rho[i] = s_.m[i] * sum;
     }

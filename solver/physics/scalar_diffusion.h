@@ -126,7 +126,7 @@ class ScalarDiffusion {
       const auto& f = walls_[wall_index[w]];
       if (!f) continue;
       double sw = 0, sv = 0;
-      const double* g_w = pk.of(nl, w).w;
+      const double* g_w = pk.weights(nl, w);
       for (const std::uint32_t* bp = nl.begin(w); bp != nl.end(w); ++bp, ++g_w) {
         const double W = *g_w;
         sw += W;

@@ -70,7 +70,7 @@ class WallBoundary {
       int mat = -1;
       bool mixed = false;
       const Vec<D> xw = s_.x[w];
-      const double* const pair_w = pk.of(nl, w).w;
+      const double* const pair_w = pk.weights(nl, w);
       const double* g_w = pair_w;
       for (const std::uint32_t* fp = nl.begin(w); fp != nl.fluid_end(w); ++fp, ++g_w) {
         const std::uint32_t f = *fp;
@@ -111,7 +111,7 @@ class WallBoundary {
         continue;
       }
       // Per fluid: eq. 27 over that fluid's particles only (the same pairs: pair_w still
-      // holds them, no of() call came between).
+      // holds them, no of() or weights() call came between).
       const double* g2_w = pair_w;
       for (const std::uint32_t* fp = nl.begin(w); fp != nl.fluid_end(w); ++fp, ++g2_w) {
         const std::uint32_t f = *fp;

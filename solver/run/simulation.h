@@ -185,9 +185,9 @@ class Simulation {
   NeighborList<D> nl_;
   PairKernel<D> pk_{c_.pair_kernel_storage() == v1::PAIR_KERNEL_STREAM
                         ? PairKernel<D>::Storage::kStream
-                    : c_.pair_kernel_storage() == v1::PAIR_KERNEL_TABLE
-                        ? PairKernel<D>::Storage::kTable
-                        : PairKernel<D>::Storage::kCompact};  // the kernel of nl_'s pairs
+                    : c_.pair_kernel_storage() == v1::PAIR_KERNEL_COMPACT
+                        ? PairKernel<D>::Storage::kCompact
+                        : PairKernel<D>::Storage::kTable};  // the kernel of nl_'s pairs
   GuardSettings guards_;
   OutputSchedule schedule_;
   RunRecorder recorder_;  // result file, checkpoints, progress, metadata

@@ -274,7 +274,7 @@ TEST(NeighborList, RefinedSquaredDistancesGiveThePairKernelOfThePositions) {
   EXPECT_THROW(fused.prepare_refined(s, nl, kernel), std::logic_error);
 }
 
-// The compact pair kernel (the default) keeps r, W and dW/dr in single precision (storage
+// The compact pair kernel (PAIR_KERNEL_COMPACT) keeps r, W and dW/dr in single precision (storage
 // about half the table's): from a fresh list its values are the double table's rounded once
 // (relative 2^-24); from the Verlet path (squared distances kept in single precision) r is
 // within 2^-23 relative and W, dW/dr within 2^-23 of the largest |W| and |dW/dr| the kernel takes.
@@ -295,7 +295,7 @@ TEST(NeighborList, CompactPairKernelIsTheTableRoundedToSinglePrecision) {
     w_max = std::max(w_max, std::abs(kernel.W(r)));
     dw_max = std::max(dw_max, std::abs(kernel.dW(r)));
   }
-  PairKernel<2> table(PairKernel<2>::Storage::kTable), compact;
+  PairKernel<2> table, compact(PairKernel<2>::Storage::kCompact);
   double worst_fresh = 0, worst_r = 0, worst_w = 0, worst_dw = 0;
   for (const bool verlet : {false, true}) {
     NeighborList<2> nl;
