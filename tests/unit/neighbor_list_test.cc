@@ -142,6 +142,17 @@ void mixed_particles(ParticleStore<2>& s, std::vector<std::int32_t>& body) {
   }
 }
 
+// mixed_particles() on one rank, periodic along x, with their ghosts; body covers the ghosts
+// too (each the body of the particle it images).
+void mixed_particles_with_ghosts(OneRank<2>& one, ParticleStore<2>& s,
+                                 std::vector<std::int32_t>& body) {
+  mixed_particles(s, body);
+  one.halo.migrate(s);
+  one.halo.build_ghosts(s);
+  for (std::size_t k = s.owned(); k < s.size(); ++k)
+    body.push_back(body[static_cast<std::size_t>(s.id[k])]);
+}
+
 // Candidates refined with every particle back where they were searched (ghosts refreshed)
 // are a fresh search's lists there, pair for pair: same order, same fluid part, same contacts.
 ::testing::AssertionResult refined_where_searched_is_fresh(ParticleStore<2>& s, OneRank<2>& one,
@@ -238,11 +249,7 @@ TEST(NeighborList, RefinedSquaredDistancesGiveThePairKernelOfThePositions) {
   OneRank<2> one(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc + skin, {true, false});
   ParticleStore<2> s;
   std::vector<std::int32_t> body;
-  mixed_particles(s, body);
-  one.halo.migrate(s);
-  one.halo.build_ghosts(s);
-  for (std::size_t k = s.owned(); k < s.size(); ++k)
-    body.push_back(body[static_cast<std::size_t>(s.id[k])]);
+  mixed_particles_with_ghosts(one, s, body);
   ContactQuery q{body.data(), range, true};
   NeighborList<2> nl;
   nl.build_candidates(s, one.grid, one.halo.ghost_box(), rc, skin, &q, true);
@@ -283,11 +290,7 @@ TEST(NeighborList, CompactPairKernelIsTheTableRoundedToSinglePrecision) {
   OneRank<2> one(Vec<2>(0, 0), Vec<2>(1.7, 1.7), rc + skin, {true, false});
   ParticleStore<2> s;
   std::vector<std::int32_t> body;
-  mixed_particles(s, body);
-  one.halo.migrate(s);
-  one.halo.build_ghosts(s);
-  for (std::size_t k = s.owned(); k < s.size(); ++k)
-    body.push_back(body[static_cast<std::size_t>(s.id[k])]);
+  mixed_particles_with_ghosts(one, s, body);
   ContactQuery q{body.data(), range, true};
   const QuinticSpline<2> kernel(rc / 3);
   double w_max = 0, dw_max = 0;
