@@ -110,10 +110,7 @@ class PairKernel {
   // The values of particle i's pairs. With kStream they live in a scratch buffer until the
   // next call.
   PairValues of(const NeighborList<D>& nl, std::size_t i) const {
-    // Always checked (one compare per particle and pass): values of another list's pairs
-    // would be silently wrong.
-    if (generation_ != nl.generation())
-      throw std::logic_error("pair kernel values are stale: prepare() after every build()");
+    check_fresh(nl);
     if (storage_ == Storage::kTable) {
       const std::size_t e = nl.first(i);
       return {r_.data() + e, w_.data() + e, dw_.data() + e};
@@ -136,8 +133,7 @@ class PairKernel {
   // condition's weights): kCompact widens only them.
   const double* weights(const NeighborList<D>& nl, std::size_t i) const {
     if (storage_ != Storage::kCompact) return of(nl, i).w;
-    if (generation_ != nl.generation())
-      throw std::logic_error("pair kernel values are stale: prepare() after every build()");
+    check_fresh(nl);
     const auto n = static_cast<std::size_t>(nl.end(i) - nl.begin(i));
     grow_scratch(n);
     widen(w32_.data() + nl.first(i), w_.data(), n);
@@ -150,6 +146,12 @@ class PairKernel {
   }
 
  private:
+  // Always checked (one compare per particle and pass): values of another list's pairs
+  // would be silently wrong.
+  void check_fresh(const NeighborList<D>& nl) const {
+    if (generation_ != nl.generation())
+      throw std::logic_error("pair kernel values are stale: prepare() after every build()");
+  }
   template <class K>
   void bind(const ParticleStore<D>& s, const NeighborList<D>& nl, const K& k) {
     s_ = &s;

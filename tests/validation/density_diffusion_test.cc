@@ -14,6 +14,7 @@
 #include "tests/support/result_reader.h"
 #include "tests/support/test_cases.h"
 #include "tests/validation/impact_pressure.h"
+#include "tests/validation/surge_front.h"
 
 namespace sph {
 namespace {
@@ -93,19 +94,7 @@ TEST(DensityDiffusion, SurgeFrontAsWithout) {
     const std::string out = test::output_dir(with ? "front_dd" : "front_plain");
     const RunOutcome r = test::run(c, out);
     ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
-    auto ref = c.reference().series_data();
-    test::ResultReader rr(out + "/result.h5");
-    const auto t = rr.series("diagnostics/time");
-    const auto front = analysis::series_component(rr.series(ref.series()), t.size(),
-                                                  ref.component(), false, "front");
-    ref.clear_times();
-    ref.clear_values();
-    for (const auto& row :
-         test::read_reference(data("dambreak_koshizuka_oka1996_front_exp.csv")).rows) {
-      ref.add_times(row[0]);
-      ref.add_values(row[1]);
-    }
-    err[with] = analysis::series_data_error(t, front, ref).error;
+    err[with] = test::surge_front_error(c, out);
     std::printf("Surge front dx = a/25, T <= 3, %s: mean deviation from Koshizuka-Oka %.2f%%\n",
                 with ? "with density diffusion" : "without", 100 * err[with]);
   }

@@ -20,6 +20,7 @@
 #include "tests/support/result_reader.h"
 #include "tests/support/test_cases.h"
 #include "tests/validation/impact_pressure.h"
+#include "tests/validation/surge_front.h"
 
 namespace sph {
 namespace {
@@ -143,19 +144,8 @@ TEST(ParticleShifting, SurgeFrontWithDensityDiffusion) {
     const std::string out = test::output_dir(with ? "shifting_front" : "shifting_front_plain");
     const RunOutcome r = test::run(c, out);
     ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
-    auto ref = c.reference().series_data();
+    err[with] = test::surge_front_error(c, out);
     test::ResultReader rr(out + "/result.h5");
-    const auto t = rr.series("diagnostics/time");
-    const auto front = analysis::series_component(rr.series(ref.series()), t.size(),
-                                                  ref.component(), false, "front");
-    ref.clear_times();
-    ref.clear_values();
-    for (const auto& row :
-         test::read_reference(data("dambreak_koshizuka_oka1996_front_exp.csv")).rows) {
-      ref.add_times(row[0]);
-      ref.add_values(row[1]);
-    }
-    err[with] = analysis::series_data_error(t, front, ref).error;
     open[with] = incomplete_support_fraction(rr.last(), c.dx());
     std::printf(
         "Surge front dx = a/25, T <= 3, density diffusion %s particle shifting: mean deviation "

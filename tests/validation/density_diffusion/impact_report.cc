@@ -14,6 +14,7 @@
 #include "tests/support/reference_table.h"
 #include "tests/support/result_reader.h"
 #include "tests/validation/impact_pressure.h"
+#include "tests/validation/surge_front.h"
 
 namespace {
 
@@ -50,20 +51,7 @@ int front(int argc, char** argv) {
     const std::string dir = argv[k + 1];
     const auto c = sph::load_case_file(std::string(SPHD_SOURCE_DIR) +
                                        "/cases/dambreak_martin_moyce_2d.textproto");
-    auto ref = c.reference().series_data();
-    sph::test::ResultReader rr(dir + "/result.h5");
-    const auto t = rr.series("diagnostics/time");
-    const auto z = sph::analysis::series_component(rr.series(ref.series()), t.size(),
-                                                   ref.component(), false, "front");
-    ref.clear_times();
-    ref.clear_values();
-    for (const auto& row :
-         sph::test::read_reference(data("dambreak_koshizuka_oka1996_front_exp.csv")).rows) {
-      ref.add_times(row[0]);
-      ref.add_values(row[1]);
-    }
-    std::printf("| %s | %.2f%% |\n", argv[k],
-                100 * sph::analysis::series_data_error(t, z, ref).error);
+    std::printf("| %s | %.2f%% |\n", argv[k], 100 * sph::test::surge_front_error(c, dir));
   }
   return 0;
 }
