@@ -27,6 +27,7 @@ void NeighborList<D>::build(const ParticleStore<D>& s, const CellGrid<D>& grid,
                             const CellBox<D>& box, double rc, const ContactQuery* contact,
                             bool rigid_all) {
   build_into(cur_, s, grid, box, rc, contact, rigid_all);
+  verlet_ = false;
 }
 
 template <int D>
@@ -41,6 +42,7 @@ void NeighborList<D>::build_candidates(const ParticleStore<D>& s, const CellGrid
   build_into(cand_, s, grid, box, rc + skin, contact ? &wider : nullptr, rigid_all);
   cand_range_ = rc + skin;
   cand_rigid_all_ = rigid_all;
+  verlet_ = true;
 }
 
 template <int D>
@@ -51,6 +53,7 @@ void NeighborList<D>::reclassify_candidates(const ParticleStore<D>& s, const Con
     throw std::logic_error("neighbour candidates are of other particles: build them again");
   if (!cand_rigid_all_)
     throw std::logic_error("candidates without rigid_all miss particles that change kind");
+  ++search_generation_;
   if (contact && contact->range + skin > cand_range_)
     throw std::logic_error("contact range beyond the neighbour candidates");
   const Kind* kind = s.kind.data();
@@ -200,6 +203,7 @@ void NeighborList<D>::build_into(Lists& L, const ParticleStore<D>& s, const Cell
                                  bool rigid_all) {
   box_ = box;
   ++generation_;
+  ++search_generation_;
   // Half cells: the box's cells split in two along every axis. The 5^D half cells around a
   // particle cover (2.5 r_c)^D instead of the (3 r_c)^D of the 3^D cells, 42% fewer candidates
   // in 3D before the half cells that lie wholly beyond r_c are left out (below). They are global

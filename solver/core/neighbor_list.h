@@ -66,6 +66,20 @@ class NeighborList {
   std::size_t first(std::size_t i) const { return cur_.start[i]; }
   // Counts the builds and refinements, so a table made from one list can tell it is stale.
   std::uint64_t generation() const { return generation_; }
+  // Counts the searches alone (build(), build_candidates(), reclassify_candidates()): the
+  // candidates below, and a table made from them, last until it changes.
+  std::uint64_t search_generation() const { return search_generation_; }
+  // The lists of the last search: the Verlet candidates (pairs within rc + skin of the
+  // positions searched at), or the lists themselves where build() made them. Fluid
+  // neighbours first, in canonical order, as in the lists.
+  const std::uint32_t* candidates_fluid_end(std::size_t i) const {
+    const Lists& L = verlet_ ? cand_ : cur_;
+    return L.nbr.data() + L.fluid_end[i];
+  }
+  const std::uint32_t* candidates_end(std::size_t i) const {
+    const Lists& L = verlet_ ? cand_ : cur_;
+    return L.nbr.data() + L.start[i + 1];
+  }
   const std::uint32_t* end(std::size_t i) const { return cur_.nbr.data() + cur_.start[i + 1]; }
   // The end of the fluid neighbours, which come first in every list (in canonical order, as
   // do the others after them).
@@ -146,6 +160,8 @@ class NeighborList {
   double cand_range_ = 0;            // rc + skin of cand_
   bool cand_rigid_all_ = false;      // cand_ built with rigid_all
   std::uint64_t generation_ = 0;
+  std::uint64_t search_generation_ = 0;
+  bool verlet_ = false;  // the last search made candidates (build_candidates)
 };
 
 // The owned particles (all inside `box`) ordered by (cell, id): the memory order that keeps

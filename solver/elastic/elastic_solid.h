@@ -212,7 +212,8 @@ class ElasticSolid final : public Unit<D> {
   Column<Mat<D>>* kernel_map_ = nullptr;
   std::vector<Mat<D>> body_map_;
   AnisotropicKernel<D, K> anisotropic_kernel_;
-  // Builds refs_ over the lists now (isotropic or anisotropic).
+  // Builds refs_ over the candidates of the last search (isotropic or anisotropic), once per
+  // search.
   void build_references(const StepContext<D>& ctx);
   Column<Vec<D>>& X_;                 // reference position (persistent, ghosted)
   Column<std::uint16_t>& body_;       // elastic body (persistent, ghosted)
@@ -420,6 +421,7 @@ void ElasticSolid<D, K>::fail(const ParticleStore<D>& s, std::size_t i, const St
 
 template <int D, class K>
 void ElasticSolid<D, K>::build_references(const StepContext<D>& ctx) {
+  if (refs_.current(ctx.neighbors)) return;
   if (kernel_map_)
     refs_.build_anisotropic(ctx.particles, ctx.neighbors, X_.data(), body_.data(), inv_rho0_.data(),
                             kernel_map_->data(), anisotropic_kernel_);

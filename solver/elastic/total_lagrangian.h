@@ -24,12 +24,14 @@
 // pulls its end particles inwards (tests/unit/total_lagrangian_test.cc).
 //
 // Which particles are the reference neighbours (the design of the lead, issue #36): those b of
-// the same elastic body with |X_b - X_a| < r_c, taken from the solver's neighbour list of the
-// current positions, where an elastic particle lists every neighbour (fluid ones first). The
-// thesis computes B^0 once with a fixed reference neighbour list; here B is recomputed every step
-// over the reference neighbours in the list now, which is the thesis' B^0 exactly until a
-// stretch carries a reference neighbour beyond r_c of the current position (B then loses that
-// pair, and F stays exact for linear fields). Taking the pairs from the list makes them work
+// the same elastic body with |X_b - X_a| < r_c, taken from the solver's neighbour search of the
+// current positions (the Verlet candidates within r_c + skin, or the lists where there is no
+// skin), where an elastic particle lists every neighbour (fluid ones first). The thesis
+// computes B^0 once with a fixed reference neighbour list; here the pairs are taken again at
+// every search and B is summed every step over them, which is the thesis' B^0 exactly until a
+// stretch carries a reference neighbour out of the search (beyond r_c + skin of the current
+// position at a search: B then loses that pair, and F stays exact for linear fields). Taking
+// the pairs from the search makes them work
 // across MPI ranks through the ghosts the halo already sends (the reference positions, body
 // indices, masses and materials are persistent columns, so ghosts carry them) and keeps every
 // sum in the list's canonical order: the same bits on any rank count. An elastic body must not
@@ -56,36 +58,25 @@ class ReferenceNeighbors {
   };
 
   // For every owned elastic particle a of s, its reference neighbours among the non-fluid
-  // part of its list, nl.fluid_end(a) .. nl.end(a), in list order. X: reference positions,
-  // body: elastic body index, inv_rho0: 1 / rho0 per material (V0 = m / rho0), all over owned
-  // particles and ghosts. K: the run's kernel (W, dW of the reference distance).
+  // part of its candidates of the last search (NeighborList::candidates_fluid_end(a) ..
+  // candidates_end(a)), in list order. X: reference positions, body: elastic body index,
+  // inv_rho0: 1 / rho0 per material (V0 = m / rho0), all over owned particles and ghosts. K:
+  // the run's kernel (W, dW of the reference distance).
   template <class K>
   void build(const ParticleStore<D>& s, const NeighborList<D>& nl, const Vec<D>* X,
              const std::uint16_t* body, const double* inv_rho0, const K& kernel) {
-    const std::size_t n = s.owned();
-    start_.resize(n + 1);
-    pairs_.clear();
-    const Kind* kind = s.kind.data();
-    const double* m = s.m.data();
-    const std::uint16_t* mat = s.material.data();
     const double rc = kernel.support_radius(), rc2 = rc * rc;
-    for (std::size_t a = 0; a < n; ++a) {
-      start_[a] = static_cast<std::uint32_t>(pairs_.size());
-      if (kind[a] != Kind::kElastic) continue;
+    build_pairs(s, nl, body, inv_rho0, [&](std::size_t a) {
       const Vec<D> Xa = X[a];
-      const std::uint16_t ba = body[a];
-      for (const std::uint32_t* jp = nl.fluid_end(a); jp != nl.end(a); ++jp) {
-        const std::uint32_t b = *jp;
-        if (kind[b] != Kind::kElastic || body[b] != ba) continue;
+      return [&, Xa](std::uint32_t b, double V0b, Vec<D>& g) {
         const Vec<D> Xab = Xa - X[b];
         const double r2 = Xab.squaredNorm();
-        if (!(r2 < rc2) || r2 == 0.0) continue;
+        if (!(r2 < rc2) || r2 == 0.0) return false;
         const double r = std::sqrt(r2);
-        const double V0b = m[b] * inv_rho0[mat[b]];
-        pairs_.push_back({b, (V0b * kernel.dW(r) / r) * Xab});  // eq. 3.6
-      }
-    }
-    start_[n] = static_cast<std::uint32_t>(pairs_.size());
+        g = (V0b * kernel.dW(r) / r) * Xab;  // eq. 3.6
+        return true;
+      };
+    });
   }
 
   // As build(), for a run with anisotropic bodies (ASPH, solver/core/anisotropic_kernel.h):
@@ -98,23 +89,12 @@ class ReferenceNeighbors {
   void build_anisotropic(const ParticleStore<D>& s, const NeighborList<D>& nl, const Vec<D>* X,
                          const std::uint16_t* body, const double* inv_rho0, const Mat<D>* G,
                          const AK& kernel) {
-    const std::size_t n = s.owned();
-    start_.resize(n + 1);
-    pairs_.clear();
-    const Kind* kind = s.kind.data();
-    const double* m = s.m.data();
-    const std::uint16_t* mat = s.material.data();
     const double s2 = AK::kSupport * AK::kSupport;
-    for (std::size_t a = 0; a < n; ++a) {
-      start_[a] = static_cast<std::uint32_t>(pairs_.size());
-      if (kind[a] != Kind::kElastic) continue;
+    build_pairs(s, nl, body, inv_rho0, [&](std::size_t a) {
       const Vec<D> Xa = X[a];
-      const std::uint16_t ba = body[a];
       const Mat<D> Ga = G[a];
       const double det_a = Ga.determinant();
-      for (const std::uint32_t* jp = nl.fluid_end(a); jp != nl.end(a); ++jp) {
-        const std::uint32_t b = *jp;
-        if (kind[b] != Kind::kElastic || body[b] != ba) continue;
+      return [&, Xa, Ga, det_a](std::uint32_t b, double V0b, Vec<D>& g) {
         const Vec<D> Xab = Xa - X[b];
         if (G[b] == Ga) {
           // One map for both (a body's own): the symmetrised gradient is the particle's, since
@@ -122,18 +102,21 @@ class ReferenceNeighbors {
           // matters since the list holds about r times the ellipse's pairs.
           const Vec<D> eta = Ga * Xab;
           const double q2 = eta.squaredNorm();
-          if (!(q2 < s2) || q2 == 0.0) continue;
-          const double V0b = m[b] * inv_rho0[mat[b]];
-          pairs_.push_back({b, V0b * kernel.grad_at(Ga, det_a, eta, std::sqrt(q2))});
-          continue;
+          if (!(q2 < s2) || q2 == 0.0) return false;
+          g = V0b * kernel.grad_at(Ga, det_a, eta, std::sqrt(q2));
+          return true;
         }
-        if (Xab.squaredNorm() == 0.0 || !kernel.in_support(Ga, G[b], Xab)) continue;
-        const double V0b = m[b] * inv_rho0[mat[b]];
-        pairs_.push_back({b, V0b * kernel.grad_pair(Ga, det_a, G[b], G[b].determinant(), Xab)});
-      }
-    }
-    start_[n] = static_cast<std::uint32_t>(pairs_.size());
+        if (Xab.squaredNorm() == 0.0 || !kernel.in_support(Ga, G[b], Xab)) return false;
+        g = V0b * kernel.grad_pair(Ga, det_a, G[b], G[b].determinant(), Xab);
+        return true;
+      };
+    });
   }
+
+  // Whether the pairs were built from the candidates of `nl`'s last search. The reference
+  // positions and kernel maps never change, so the pairs (and their gradients) hold until the
+  // next search: a Verlet run evaluates them once per search, not once per step.
+  bool current(const NeighborList<D>& nl) const { return built_for_ == nl.search_generation(); }
 
   const Pair* begin(std::size_t a) const { return pairs_.data() + start_[a]; }
   const Pair* end(std::size_t a) const { return pairs_.data() + start_[a + 1]; }
@@ -144,8 +127,36 @@ class ReferenceNeighbors {
   }
 
  private:
+  // The loop of build() and build_anisotropic(): for_particle(a) gives the test of a's pairs,
+  // pair(b, V0_b, g) -> whether b is a reference neighbour, with V0_b grad0 W_ab in g.
+  template <class ForParticle>
+  void build_pairs(const ParticleStore<D>& s, const NeighborList<D>& nl, const std::uint16_t* body,
+                   const double* inv_rho0, ForParticle&& for_particle) {
+    const std::size_t n = s.owned();
+    start_.resize(n + 1);
+    pairs_.clear();
+    const Kind* kind = s.kind.data();
+    const double* m = s.m.data();
+    const std::uint16_t* mat = s.material.data();
+    for (std::size_t a = 0; a < n; ++a) {
+      start_[a] = static_cast<std::uint32_t>(pairs_.size());
+      if (kind[a] != Kind::kElastic) continue;
+      const std::uint16_t ba = body[a];
+      const auto pair = for_particle(a);
+      Vec<D> g;
+      for (const std::uint32_t* jp = nl.candidates_fluid_end(a); jp != nl.candidates_end(a); ++jp) {
+        const std::uint32_t b = *jp;
+        if (kind[b] != Kind::kElastic || body[b] != ba) continue;
+        if (pair(b, m[b] * inv_rho0[mat[b]], g)) pairs_.push_back({b, g});
+      }
+    }
+    start_[n] = static_cast<std::uint32_t>(pairs_.size());
+    built_for_ = nl.search_generation();
+  }
+
   std::vector<std::uint32_t> start_;
   std::vector<Pair> pairs_;
+  std::uint64_t built_for_ = ~std::uint64_t{0};
 };
 
 // The three sums of a particle over its reference neighbours, in one pass:
