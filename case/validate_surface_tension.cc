@@ -79,27 +79,47 @@ class SurfaceTensionValidator {
         error(wf, "duplicate contact angle for wall '" + w.wall() +
                       "' (already surface_tension.walls[" + std::to_string(it->second) + "])");
       }
-      const double theta = w.contact_angle();
-      if (!std::isfinite(theta) || !(theta > 0) || !(theta < 180))
-        error(field("walls", i, "contact_angle"), "must be in (0, 180) degrees; got " + num(theta));
-      if (fluid_material(w.material(), field("walls", i, "material"), true)) {
-        if (in_pair_.count(w.material()) == 0)
-          error(field("walls", i, "material"),
-                "material '" + w.material() + "' has no surface tension (it is in no pair)");
-        else if (free_seen_.count(w.material()) != 0)
-          // Measured (docs/surface_tension.md): a free half drop on a floor at 120 degrees
-          // left the floor, at 90 degrees it settled at 108.
-          error(field("walls", i, "material"),
-                "material '" + w.material() +
-                    "' has a free surface: contact angles at a free surface are not supported "
-                    "yet (solids without an angle wet it neutrally, 90 degrees)");
+      angle_and_liquid("walls", i, w.contact_angle(), w.material());
+    }
+    std::map<std::string, int> solids_seen;
+    for (int i = 0; i < st.bodies_size(); ++i) {
+      const auto& b = st.bodies(i);
+      const std::string bf = field("bodies", i, "solid_material");
+      const auto it = phase_.find(b.solid_material());
+      if (b.solid_material().empty()) {
+        error(bf, "is required (the name of a SOLID material)");
+      } else if (it == phase_.end()) {
+        error(bf, "unknown material '" + b.solid_material() + "'");
+      } else if (it->second != v1::SOLID) {
+        error(bf, "material '" + b.solid_material() +
+                      "' is not SOLID (bodies are made of SOLID materials)");
+      } else if (const auto [seen, fresh] = solids_seen.emplace(b.solid_material(), i); !fresh) {
+        error(bf, "duplicate contact angle for material '" + b.solid_material() +
+                      "' (already surface_tension.bodies[" + std::to_string(seen->second) + "])");
       }
+      angle_and_liquid("bodies", i, b.contact_angle(), b.material());
     }
     return std::move(errors_);
   }
 
  private:
   void error(const std::string& f, const std::string& msg) { errors_.push_back({f, msg}); }
+  // A contact angle of surface_tension.<list>[i] and the liquid it is measured through.
+  void angle_and_liquid(const char* list, int i, double theta, const std::string& liquid) {
+    if (!std::isfinite(theta) || !(theta > 0) || !(theta < 180))
+      error(field(list, i, "contact_angle"), "must be in (0, 180) degrees; got " + num(theta));
+    if (!fluid_material(liquid, field(list, i, "material"), true)) return;
+    if (in_pair_.count(liquid) == 0)
+      error(field(list, i, "material"),
+            "material '" + liquid + "' has no surface tension (it is in no pair)");
+    else if (free_seen_.count(liquid) != 0)
+      // Measured (docs/surface_tension.md): a free half drop on a floor at 120 degrees
+      // left the floor, at 90 degrees it settled at 108.
+      error(field(list, i, "material"),
+            "material '" + liquid +
+                "' has a free surface: contact angles at a free surface are not supported "
+                "yet (solids without an angle wet it neutrally, 90 degrees)");
+  }
   static std::string num(double v) { return number_text(v); }
   static std::string pair_text(const v1::SurfaceTension::Pair& p) {
     return "'" + p.material_a() + "' - '" + p.material_b() + "'";

@@ -136,6 +136,7 @@ class SurfaceTension final : public Unit<D> {
   std::vector<double> sigma_void_;     // per material: sigma against void, 0 without
   bool any_free_ = false;              // some material has a free surface
   std::vector<ContactAngle> contact_;  // per wall of the case
+  std::vector<ContactAngle> solid_;    // per material: at rigid bodies made of it
   double wall_volume_ = 0, min_gradient_ = 0, self_weight_ = 0;
   std::vector<double> depth_of_colour_;  // planar_depth() at colours 0.5 + 0.5 k / (size - 1)
   double max_dt_ = std::numeric_limits<double>::infinity();
@@ -158,6 +159,7 @@ SurfaceTension<D>::SurfaceTension(const v1::Case& c, const std::vector<MaterialP
       active_(nm_, 0),
       sigma_void_(nm_, 0.0),
       contact_(static_cast<std::size_t>(c.walls_size())),
+      solid_(c.surface_tension().bodies_size() > 0 ? nm_ : 0),
       wall_volume_(wall_volume),
       min_gradient_(kNormalThreshold / h),
       wall_index_(wall_index),
@@ -195,18 +197,24 @@ SurfaceTension<D>::SurfaceTension(const v1::Case& c, const std::vector<MaterialP
     raw_curvature_ = &particles.template add<double>("surface_tension_raw_curvature", kName, false);
     gradient_norm_ = &particles.template add<double>("surface_tension_gradient_norm", kName, false);
   }
-  for (const auto& w : st.walls()) {
+  const auto angle = [&](double degrees, const std::string& liquid) {
     ContactAngle ca;
     ca.set = true;
-    const double theta = w.contact_angle() * std::numbers::pi / 180.0;
+    const double theta = degrees * std::numbers::pi / 180.0;
     ca.cos_own = std::cos(theta);
     ca.sin_own = std::sin(theta);
     ca.cos_other = -ca.cos_own;  // cos(pi - theta)
     ca.sin_other = ca.sin_own;
-    ca.through = static_cast<std::uint16_t>(material_index(materials, w.material()));
+    ca.through = static_cast<std::uint16_t>(material_index(materials, liquid));
+    return ca;
+  };
+  for (const auto& w : st.walls())
     for (int k = 0; k < c.walls_size(); ++k)
-      if (c.walls(k).name() == w.wall()) contact_[static_cast<std::size_t>(k)] = ca;
-  }
+      if (c.walls(k).name() == w.wall())
+        contact_[static_cast<std::size_t>(k)] = angle(w.contact_angle(), w.material());
+  for (const auto& b : st.bodies())
+    solid_[static_cast<std::size_t>(material_index(materials, b.solid_material()))] =
+        angle(b.contact_angle(), b.material());
 }
 
 // The share of the kernel support on the own side of a planar interface at depth d is
@@ -333,7 +341,7 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
     }
     const double fluid_support = support;
     // The solids around i (walls and rigid particles: the list's dummies) and the angle of the
-    // nearest solid: a wall's own, else neutral.
+    // nearest solid: a wall's own or a rigid body's material's, else neutral.
     double nearest = std::numeric_limits<double>::infinity();
     const ContactAngle* angle = nullptr;
     Vec<D> wall_normal = Vec<D>::Zero();
@@ -346,8 +354,9 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
       if (free) present += ((Vi2 + Vw * Vw) * *g_dw / r) * (xi - x[j]);
       if (r < nearest) {
         nearest = r;
-        const ContactAngle* own =
-            contact && kind[j] == Kind::kWall ? &contact_[(*wall_index_)[j]] : nullptr;
+        const ContactAngle* own = contact && kind[j] == Kind::kWall ? &contact_[(*wall_index_)[j]]
+                                  : !solid_.empty() && kind[j] == Kind::kRigid ? &solid_[mat[j]]
+                                                                               : nullptr;
         angle = own != nullptr && own->set ? own : &neutral;
       }
     }

@@ -623,6 +623,39 @@ TEST(CaseValidation, SurfaceTensionContactAngles) {
   EXPECT_TRUE(has_error(errs, "surface_tension.walls[3].wall", "is required")) << dump(errs);
 }
 
+// Contact angles at rigid bodies, by their SOLID material (surface_tension.bodies).
+TEST(CaseValidation, SurfaceTensionContactAnglesAtBodies) {
+  const std::string m = kTwoFluids;  // with the SOLID "steel"
+  const std::string pair = R"(pairs { material_a: "water" material_b: "oil" sigma: 0.03 } )";
+  auto errs =
+      errors_of(m + "surface_tension { " + pair +
+                R"(bodies { solid_material: "steel" contact_angle: 30 material: "water" } })");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  errs = errors_of(m + "surface_tension { " + pair +
+                   R"(bodies { solid_material: "water" contact_angle: 30 material: "water" }
+    bodies { solid_material: "iron" contact_angle: 30 material: "water" }
+    bodies { solid_material: "steel" contact_angle: 180 material: "water" }
+    bodies { solid_material: "steel" contact_angle: 30 material: "steel" }
+    bodies { contact_angle: 30 material: "water" } })");
+  EXPECT_TRUE(
+      has_error(errs, "surface_tension.bodies[0].solid_material", "material 'water' is not SOLID"))
+      << dump(errs);
+  EXPECT_TRUE(
+      has_error(errs, "surface_tension.bodies[1].solid_material", "unknown material 'iron'"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "surface_tension.bodies[2].contact_angle",
+                        "must be in (0, 180) degrees; got 180"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "surface_tension.bodies[3].solid_material",
+                        "duplicate contact angle for material 'steel' (already "
+                        "surface_tension.bodies[2])"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "surface_tension.bodies[3].material", "material 'steel' is SOLID"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "surface_tension.bodies[4].solid_material", "is required"))
+      << dump(errs);
+}
+
 // Elastic bodies (case/validate/elastic_bodies.cc). The base case's fluid fills [0.5, 1.5]^2;
 // the plate lies above it, clamped at its left end.
 const char* kRubber =

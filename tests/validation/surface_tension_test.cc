@@ -404,10 +404,42 @@ CapAngles cap_angles(const DropFields& f, double dx) {
   return a;
 }
 
-void contact_angle(double theta_deg, const char* name) {
+// drop_on_wall with the floor under the drop, |x| < 2, a FIXED rigid body of a SOLID material
+// ("plate") that carries the contact angle (surface_tension.bodies) instead of the wall.
+v1::Case drop_on_body(double dx, double theta_deg, double mu, double end_time) {
+  v1::Case c = drop_on_wall(dx, theta_deg, mu, end_time);
+  const double wall = 4 * dx;
+  v1::Shape plate = parse_case_text("walls { shape { box { lo { x: -2 y: " + num(-wall) +
+                                    " } hi { x: 2 y: 0 } } } }")
+                        .walls(0)
+                        .shape();
+  v1::Wall& floor = *c.mutable_walls(0);
+  v1::Shape whole = floor.shape();
+  *floor.mutable_shape()->mutable_difference()->mutable_base() = whole;
+  *floor.mutable_shape()->mutable_difference()->add_subtract() = plate;
+  v1::Material& steel = *c.add_materials();
+  steel.set_name("plate");
+  steel.set_phase(v1::SOLID);
+  steel.set_density(1);
+  v1::RigidBody& body = *c.add_bodies();
+  body.set_name("plate");
+  body.set_material("plate");
+  body.set_motion_type(v1::FIXED);
+  *body.mutable_shape() = plate;
+  v1::SurfaceTension& st = *c.mutable_surface_tension();
+  st.clear_walls();
+  v1::SurfaceTension::SolidContactAngle& a = *st.add_bodies();
+  a.set_solid_material("plate");
+  a.set_contact_angle(theta_deg);
+  a.set_material("drop");
+  return c;
+}
+
+void contact_angle(double theta_deg, const char* name, bool on_body = false) {
   // R/dx = 15; mu = 0.2 (Ohnesorge number 0.2) damps the spreading within t = 8.
   const double dx = 1.0 / 15, mu = 0.2, end = 8;
-  const v1::Case c = drop_on_wall(dx, theta_deg, mu, end);
+  const v1::Case c =
+      on_body ? drop_on_body(dx, theta_deg, mu, end) : drop_on_wall(dx, theta_deg, mu, end);
   const std::string out = test::output_dir(name);
   const RunOutcome r = test::run(c, out);
   ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
@@ -420,11 +452,12 @@ void contact_angle(double theta_deg, const char* name) {
       static_cast<double>(std::count(f.material.begin(), f.material.end(), 0)) * dx * dx;
   const double R_cap = std::sqrt(area / (th - std::sin(th) * std::cos(th)));
   std::printf(
-      "Drop on a wall, contact angle %.0f deg, R/dx = 15, %lld steps, t = %.1f: angle from the "
+      "Drop on a %s, contact angle %.0f deg, R/dx = 15, %lld steps, t = %.1f: angle from the "
       "fitted circle %.1f deg (error %+.1f deg), from height and base %.1f deg (error %+.1f "
       "deg); cap radius %.3f (circular cap of the drop's area at the prescribed angle: %.3f)\n",
-      theta_deg, static_cast<long long>(r.steps), f.time, a.circle_fit, a.circle_fit - theta_deg,
-      a.height_base, a.height_base - theta_deg, a.radius, R_cap);
+      on_body ? "rigid body" : "wall", theta_deg, static_cast<long long>(r.steps), f.time,
+      a.circle_fit, a.circle_fit - theta_deg, a.height_base, a.height_base - theta_deg, a.radius,
+      R_cap);
   EXPECT_LT(std::abs(a.circle_fit - theta_deg), 10.0);
 }
 
@@ -433,6 +466,10 @@ TEST(SurfaceTension, ContactAngle60) {
 }
 TEST(SurfaceTension, ContactAngle120) {
   contact_angle(120, "surface_tension_contact_angle_120");
+}
+// The angle of a rigid body's material (surface_tension.bodies): the same drop on a FIXED body.
+TEST(SurfaceTension, ContactAngle60OnARigidBody) {
+  contact_angle(60, "surface_tension_contact_angle_60_body", true);
 }
 
 // Least-squares fit of y(t) = e^{-gamma t} (p cos(omega t) + q sin(omega t)) + offset. For a
