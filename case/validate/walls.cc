@@ -24,6 +24,40 @@ void Validator::wall(const v1::Wall& w, const std::string& f) {
   }
   if (!w.material().empty() && (w.has_temperature() || w.has_concentration()))
     transport_properties(w.material(), f + ".material");
+  if (w.has_growth_speed()) growth_speed(w, cat(f, "growth_speed"));
+}
+
+// A growing wall (solver/boundaries/wall_growth.h) converts the fluid its front passes; the
+// front moves back never, so the speed must be >= 0 at every time.
+void Validator::growth_speed(const v1::Wall& w, const std::string& f) {
+  const v1::TimeFunction& g = w.growth_speed();
+  time_function(g, f);
+  if (w.has_motion()) error(f, "a growing wall cannot move (remove `motion` or `growth_speed`)");
+  switch (g.kind_case()) {
+    case v1::TimeFunction::kConstant:
+      if (g.constant() < 0)
+        error(cat(f, "constant"),
+              "must be >= 0 (a front does not recede); got " + num(g.constant()));
+      break;
+    case v1::TimeFunction::kSine:
+      if (g.sine().offset() < std::abs(g.sine().amplitude()))
+        error(cat(f, "sine"), "offset must be >= |amplitude| (the speed must stay >= 0)");
+      break;
+    case v1::TimeFunction::kPiecewiseLinear:
+    case v1::TimeFunction::kPiecewiseConstant: {
+      const bool lin = g.kind_case() == v1::TimeFunction::kPiecewiseLinear;
+      const auto& t = lin ? g.piecewise_linear() : g.piecewise_constant();
+      const std::string tf = cat(f, lin ? "piecewise_linear" : "piecewise_constant");
+      for (int i = 0; i < t.values_size(); ++i)
+        if (!(t.values(i) >= 0))
+          error(idx(cat(tf, "values"), i),
+                "must be >= 0 (a front does not recede); got " + num(t.values(i)));
+      break;
+    }
+    case v1::TimeFunction::KIND_NOT_SET:
+      error(f, "needs a speed (constant, sine or a table) [m/s]");
+      break;
+  }
 }
 
 }  // namespace sph::case_validation
