@@ -1031,7 +1031,8 @@ TEST(RankConsistency, ParticleShiftingAcrossRanksAndResume) {
 
 // A wall growing into a driven channel flow (solver/boundaries/wall_growth.h): every fluid
 // particle the front passes becomes a wall particle where it stands, and a disk carried by
-// the flow is engulfed when the front reaches it (about step 560), on 1/2/4 ranks, and
+// the flow (inelastic hard-body contact, as Reder's) is engulfed when the front reaches it
+// (about step 560; the contact lists are refreshed without it), on 1/2/4 ranks, and
 // resumed on 1 and 4 ranks from a checkpoint at step 600 (the emptied body slot and the
 // grown totals in it).
 v1::Case floor_growing_under_a_disk() {
@@ -1048,6 +1049,7 @@ v1::Case floor_growing_under_a_disk() {
             growth_speed { constant: 0.4 } }
     walls { name: "lid" shape { box { lo { x: 0 y: 1 } hi { x: 0.4 y: 1.12 } } } }
     bodies { name: "disk" material: "solid" shape { ball { center { x: 0.2 y: 0.3 } radius: 0.1 } } }
+    contact { model: RESTITUTION restitution: 0 }
     body_force { x: 1 }
     fluid_model { density: SUMMATION }
     time { end_time: 10 }
