@@ -28,11 +28,13 @@ void Validator::wall(const v1::Wall& w, const std::string& f) {
 }
 
 // A growing wall (solver/boundaries/wall_growth.h) converts the fluid its front passes; the
-// front moves back never, so the speed must be >= 0 at every time.
+// front never moves back, so the speed must be >= 0 at every time.
 void Validator::growth_speed(const v1::Wall& w, const std::string& f) {
   const v1::TimeFunction& g = w.growth_speed();
   time_function(g, f);
   if (w.has_motion()) error(f, "a growing wall cannot move (remove `motion` or `growth_speed`)");
+  if (w.shape().has_points())
+    error(f, "a wall of explicit points has no surface to grow from (give it a shape)");
   switch (g.kind_case()) {
     case v1::TimeFunction::kConstant:
       if (g.constant() < 0)

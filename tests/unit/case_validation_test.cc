@@ -473,6 +473,9 @@ TEST(CaseValidation, GrowingWallSpeedIsNonNegativeAndTheWallStill) {
   errs =
       errors_of(floor + "growth_speed { constant: 0.1 } motion { velocity_x { constant: 1 } } }");
   EXPECT_TRUE(has_error(errs, "walls[0].growth_speed", "a growing wall cannot move")) << dump(errs);
+  errs = errors_of(
+      R"(walls { name: "dots" shape { points { points { x: 1 y: 0.45 } } } growth_speed { constant: 0.1 } })");
+  EXPECT_TRUE(has_error(errs, "walls[0].growth_speed", "no surface to grow from")) << dump(errs);
 }
 
 // A wall must hold particles wherever a first-row fluid particle's kernel support reaches
