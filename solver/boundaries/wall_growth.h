@@ -11,10 +11,11 @@
 // Distances are the shape's signed distance (case/geometry.h: exact for primitives and
 // unions), across periodic boundaries the nearest image's.
 //
-// Conversion. The particle keeps its id, mass (so the total mass is conserved to the bit:
-// fluid mass plus grown mass), position and scalars; its velocity becomes the wall's (zero)
-// and its acceleration zero, so its momentum goes into the wall as a wall force's would. The
-// wall condition gives it pressure and density from this step on (Adami 2012 eqs. 27-28).
+// Conversion. The particle keeps its id, mass (every particle's mass is unchanged, so fluid
+// mass plus grown mass stays the initial mass up to the rounding of the sums), position and
+// scalars; its velocity becomes the wall's (zero) and its acceleration zero, so its momentum
+// goes into the wall as a wall force's would. The wall condition gives it pressure and
+// density from this step on (Adami 2012 eqs. 27-28).
 //
 // Engulfing. A rigid body is engulfed when the front reaches one of its particles (the same
 // distance test): every particle of the body becomes a particle of that wall (the first
