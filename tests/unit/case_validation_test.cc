@@ -478,6 +478,22 @@ TEST(CaseValidation, GrowingWallSpeedIsNonNegativeAndTheWallStill) {
   EXPECT_TRUE(has_error(errs, "walls[0].growth_speed", "no surface to grow from")) << dump(errs);
 }
 
+// A growing wall must keep clear of open-boundary buffers, as far as it grows by the end time.
+TEST(CaseValidation, GrowingWallKeepsClearOfOpenBoundaryBuffers) {
+  auto c =
+      load_case_file(std::string(SPHD_SOURCE_DIR) + "/cases/channel_inflow_outflow_2d.textproto");
+  c.mutable_walls(0)->mutable_growth_speed()->set_constant(0.1);
+  auto errs = validate_case(c, {});
+  EXPECT_TRUE(has_error(errs, "walls[0].growth_speed", "reaches the buffer of open_boundaries[0]"))
+      << dump(errs);
+  // Growing only between the buffers, 0.1 m/s for 1 s: clear of them.
+  c.mutable_walls(0)->mutable_shape()->mutable_box()->mutable_lo()->set_x(0.5);
+  c.mutable_walls(0)->mutable_shape()->mutable_box()->mutable_hi()->set_x(1.5);
+  c.mutable_time()->set_end_time(1);
+  errs = validate_case(c, {});
+  EXPECT_FALSE(has_error(errs, "walls[0].growth_speed", "reaches the buffer")) << dump(errs);
+}
+
 // A wall must hold particles wherever a first-row fluid particle's kernel support reaches
 // into it: lattice distances n dx < r_c, two layers at r_c = 3 dx, five at r_c = 6 dx.
 TEST(CaseValidation, WallsMustCoverTheKernelSupport) {
