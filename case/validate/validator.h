@@ -81,6 +81,7 @@ class Validator {
   void mesh(const v1::TriangleMesh& m, const std::string& f);
   void time_function(const v1::TimeFunction& tf, const std::string& f);
   void motion(const v1::Motion& m, const std::string& f);
+  void growth_speed(const v1::Wall& w, const std::string& f, bool shape_ok);  // walls.cc
   // velocity_fields.cc: beam_mode is refused unless elastic_body.
   void velocity_field(const v1::VelocityField& v, const std::string& f, bool elastic_body);
 

@@ -5,8 +5,9 @@
 //
 // The step is written down once, with its equations, in solver/seam/step_phase.h: the built-in
 // stages (neighbour search, density and EOS, the wall condition, fluid forces, rigid bodies
-// and contact, open boundaries, phase transitions) run in that order, and the units on the
-// seam (solver/seam/unit.h; heat, species, surface tension, ...) run at the phases they name.
+// and contact, growing walls, open boundaries, phase transitions) run in that order, and the
+// units on the seam (solver/seam/unit.h; heat, species, surface tension, ...) run at the
+// phases they name.
 // Each unit appears only if the case needs it; unit_seconds() reports what ran and its time.
 // The implementation is split by concern:
 //   simulation_impl.h         run, start, step, integrate_step: the step loop;
@@ -33,6 +34,7 @@
 #include "solver/bodies/rigid_bodies.h"
 #include "solver/bodies/spring_dashpot_contact.h"
 #include "solver/boundaries/open_boundaries.h"
+#include "solver/boundaries/wall_growth.h"
 #include "solver/core/kernel.h"
 #include "solver/core/neighbor_list.h"
 #include "solver/core/pair_kernel.h"
@@ -243,6 +245,13 @@ class Simulation {
   void build_open_boundaries();
   void set_open_boundary_pressure();
   void apply_open_boundaries_after_forces();
+
+  // Walls growing into the fluid (solver/boundaries/wall_growth.h).
+  std::optional<WallGrowth<D>> growth_;
+  void build_wall_growth();
+  // After the drift: converts what the fronts passed. `converted`: some particle changed kind
+  // (all ranks alike); `engulfed`: some body was engulfed. Non-empty: why the run cannot go on.
+  std::string grow_walls(bool& converted, bool& engulfed);
 
   // Run state (what a checkpoint stores besides the particles).
   double t_ = 0, dt_ = 0, dt0_ = 0, next_series_ = 0;

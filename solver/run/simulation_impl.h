@@ -208,6 +208,7 @@ void Simulation<D, K>::start() {
       if (bodies_) bodies_->load(state);
       if (open_) open_->load(state);
       if (phase_) phase_->load(state);
+      if (growth_) growth_->load(state);
       if (contact_) contact_->load(state);  // every rank reads all pairs ...
       for (const auto& u : unit_set_.units()) u->load(state);
     } catch (const std::runtime_error& e) {
@@ -326,7 +327,9 @@ std::string Simulation<D, K>::integrate_step(double dt) {
   t_ += dt;
   ++step_;
   run_phase(StepPhase::kAfterDrift);  // walls moved to t, their prescribed values
-  bool bodies_left = false;
+  bool bodies_left = false, converted = false, engulfed = false;
+  if (growth_)
+    if (std::string why = grow_walls(converted, engulfed); !why.empty()) return why;
   if (open_) {
     {
       Timer tm(timer(OpenBoundaries<D, K>::kName));
@@ -341,8 +344,9 @@ std::string Simulation<D, K>::integrate_step(double dt) {
         if (std::string why = regroup_bodies_that_left(); !why.empty()) return why;
     }
   }
-  exchange_and_search(Search::kAsNeeded);
-  if (bodies_left && contact_) {
+  // Particles that changed kind are listed by their new kind: a fresh search.
+  exchange_and_search(converted ? Search::kFresh : Search::kAsNeeded);
+  if ((bodies_left || engulfed) && contact_) {
     // As after a phase transition: the rebuilt bodies' contact forces for the next step.
     Timer tc(timer(BodyContact<D>::kName));
     contact_->refresh(nl_, comm_);
@@ -501,6 +505,27 @@ std::string Simulation<D, K>::apply_phase_transitions() {
       contact_->refresh(nl_, comm_);
     }
     bodies_->update_accelerations(t_);  // the rebuilt bodies' own forces
+  }
+  return {};
+}
+
+template <int D, class K>
+std::string Simulation<D, K>::grow_walls(bool& converted, bool& engulfed) {
+  Timer tm(timer(WallGrowth<D>::kName));
+  typename WallGrowth<D>::Columns cols;
+  cols.wall_index = wall_index_;
+  cols.free_slip = free_slip_;
+  cols.transport = transport_;
+  cols.background = background_;
+  if (s_.has("wall_acceleration")) cols.wall_accel = &s_.template get<Vec<D>>("wall_acceleration");
+  if (open_) cols.open_zone = &open_->zone();
+  const auto out = growth_->run(s_, cols, bodies_ ? &*bodies_ : nullptr, t_, comm_);
+  converted = out.grown + out.engulfed > 0;
+  engulfed = out.engulfed > 0;
+  if (!out.error.empty()) {
+    char buf[120];
+    std::snprintf(buf, sizeof buf, " at step %lld, t = %.9g", static_cast<long long>(step_), t_);
+    return out.error + buf;
   }
   return {};
 }

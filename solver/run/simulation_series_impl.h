@@ -89,6 +89,17 @@ void Simulation<D, K>::record_series() {
   recorder_.result().put("diagnostics/momentum",
                          std::vector<double>(cs.momentum.data(), cs.momentum.data() + D), dd);
   if (bodies_) sample_bodies();
+  if (growth_) {
+    recorder_.result().put("wall_growth/time", t_);
+    for (std::size_t k = 0; k < growth_->size(); ++k) {
+      const std::string base = "wall_growth/" + growth_->name(k) + "/";
+      recorder_.result().put(base + "front", growth_->front(k, t_));
+      recorder_.result().put(base + "particles", static_cast<double>(growth_->grown_particles(k)));
+      recorder_.result().put(base + "mass", growth_->grown_mass(k));
+    }
+    recorder_.result().put("wall_growth/engulfed_bodies",
+                           static_cast<double>(growth_->engulfed_bodies()));
+  }
   if (open_) {
     recorder_.result().put("open_boundaries/time", t_);
     for (std::size_t b = 0; b < open_->zones().size(); ++b)
@@ -127,7 +138,7 @@ void Simulation<D, K>::sample_bodies() {
   // Fixed width: slots of bodies not born yet (phase transitions) or gone are NaN.
   std::vector<RigidBody<D>> padded;
   const std::vector<RigidBody<D>>* list = &bodies_->bodies();
-  if (phase_ || leaving_) {
+  if (phase_ || leaving_ || growth_) {
     padded = bodies_->bodies();
     RigidBody<D> none;
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -160,7 +171,7 @@ void Simulation<D, K>::sample_bodies() {
     n.push_back(static_cast<double>(b.contacts));
     ke.push_back(b.kinetic_energy());
     mass.push_back(b.mass);
-    serial.push_back(b.active() || (!phase_ && !leaving_)
+    serial.push_back(b.active() || (!phase_ && !leaving_ && !growth_)
                          ? static_cast<double>(b.serial)
                          : std::numeric_limits<double>::quiet_NaN());
     for (int p = 0; p < RigidBodies<D>::A; ++p)
@@ -220,6 +231,7 @@ std::string Simulation<D, K>::write_checkpoint_now() {
   if (contact_) contact_->save(state, comm_);
   if (open_) open_->save(state);
   if (phase_) phase_->save(state);
+  if (growth_) growth_->save(state);
   for (const auto& u : unit_set_.units()) u->save(state);
   return recorder_.write_checkpoint(s_, state, step_, t_);
 }

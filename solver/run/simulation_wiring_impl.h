@@ -133,6 +133,7 @@ void Simulation<D, K>::build_units() {
   bound_.emplace(h_, factor, c_max, nu_max, body_ ? body_->max_magnitude() : 0.0);
   build_phase_transitions();
   build_open_boundaries();
+  build_wall_growth();
   build_seam_units();
   if (c_.probes_size() > 0) {
     std::vector<ProbeSet<D>> sets;
@@ -206,6 +207,17 @@ void Simulation<D, K>::build_phase_transitions() {
   }
   phase_.emplace(s_, std::move(rules), slots, dx_);
   units_.push_back(PhaseTransitions<D>::kName);
+}
+
+template <int D, class K>
+void Simulation<D, K>::build_wall_growth() {
+  const auto& walls = c_.walls();
+  if (std::none_of(walls.begin(), walls.end(),
+                   [](const v1::Wall& w) { return w.has_growth_speed(); }))
+    return;
+  growth_.emplace(c_, mats_, dx_, grid_.periodic, grid_.length);
+  bound_->add_limit(growth_->max_time_step());
+  units_.push_back(WallGrowth<D>::kName);
 }
 
 template <int D, class K>

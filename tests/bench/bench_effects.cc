@@ -3,9 +3,9 @@
 // with bodies and contact, + phase change (the disk melting from its rim), + a drop of a second
 // fluid in place of the disk, + surface tension between the two fluids, the fluid with density
 // by the continuity equation without and with density diffusion, the fluid without the
-// transport velocity and with particle shifting instead of it, and for each the time
-// per step by unit and the per-particle storage by unit. A unit a scene does not use must show no
-// time and no storage.
+// transport velocity and with particle shifting instead of it, the box's walls growing into
+// the fluid around the disk, and for each the time per step by unit and the per-particle
+// storage by unit. A unit a scene does not use must show no time and no storage.
 //
 //   bench_effects [--steps S] [--dx DX] [--pair-kernel compact|table|stream] [--only LABEL_PART]
 #include <mpi.h>
@@ -35,8 +35,9 @@ struct Effects {
     kImpulses,
     kRepulsion
   } law = Law::kSpringDashpot;
-  bool no_transport = false;           // without the transport velocity
-  bool shifting = false;               // particle shifting (LOCAL, A = 2) instead of it
+  bool no_transport = false;  // without the transport velocity
+  bool shifting = false;      // particle shifting (LOCAL, A = 2) instead of it
+  bool grow = false;  // the box's walls grow into the fluid at 0.1 m/s (docs/growing_walls.md)
 };
 
 std::string scene(double dx, const Effects& e) {
@@ -77,6 +78,7 @@ surface_tension { pairs { material_a: "fluid" material_b: "drop" sigma: 0.04 } }
   t += "\nwalls { shape { shell { inner { box { lo { x: 0 y: 0 } hi { x: 0.05 y: 0.05 } } } } } ";
   if (e.heat) t += "temperature { value { constant: 350 } } ";
   if (e.concentration) t += "concentration { value { constant: 1 } } ";
+  if (e.grow) t += "growth_speed { constant: 0.1 } ";
   t += "}\n";
   if (e.body)
     t +=
@@ -225,6 +227,7 @@ int main(int argc, char** argv) {
       {"continuity + density diffusion", {.continuity = true, .density_diffusion = true}},
       {"shifting: no transport velocity", {.no_transport = true}},
       {"shifting: on", {.shifting = true}},
+      {"+ rigid body + growing walls", {.body = true, .grow = true}},
   };
   for (const auto& v : variants) {
     if (!only.empty() && std::string(v.label).find(only) == std::string::npos) continue;

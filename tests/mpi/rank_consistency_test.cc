@@ -1045,5 +1045,61 @@ TEST(RankConsistency, ParticleShiftingAcrossRanksAndResume) {
   check_resume("particle_shifting", c, 1200, 601);
 }
 
+// A wall growing into a driven channel flow (solver/boundaries/wall_growth.h): every fluid
+// particle the front passes becomes a wall particle where it stands, and a disk carried by
+// the flow (inelastic hard-body contact, as Reder's) is engulfed when the front reaches it
+// (about step 560; the contact lists are refreshed without it), on 1/2/4 ranks, and
+// resumed on 1 and 4 ranks from a checkpoint at step 600 (the emptied body slot and the
+// grown totals in it).
+v1::Case floor_growing_under_a_disk() {
+  return parse_case_text(R"(
+    name: "growing_floor"
+    dimension: 2
+    dx: 0.04
+    domain { lo { x: 0 y: -0.12 } hi { x: 0.4 y: 1.12 } }
+    periodic_x: true
+    materials { name: "water" density: 1 eos { kind: LINEAR sound_speed: 10 } dynamic_viscosity: 0.01 }
+    materials { name: "solid" phase: SOLID density: 1 }
+    fluids { name: "f" material: "water" shape { box { lo { x: 0 y: 0 } hi { x: 0.4 y: 1 } } } }
+    walls { name: "floor" shape { box { lo { x: 0 y: -0.12 } hi { x: 0.4 y: 0 } } }
+            growth_speed { constant: 0.4 } }
+    walls { name: "lid" shape { box { lo { x: 0 y: 1 } hi { x: 0.4 y: 1.12 } } } }
+    bodies { name: "disk" material: "solid" shape { ball { center { x: 0.2 y: 0.3 } radius: 0.1 } } }
+    contact { model: RESTITUTION restitution: 0 }
+    body_force { x: 1 }
+    fluid_model { density: SUMMATION }
+    time { end_time: 10 }
+    output { series_interval: 1e-12 })");
+}
+
+TEST(RankConsistency, GrowingWallEngulfingADiskAcrossRanksAndResume) {
+  const v1::Case c = floor_growing_under_a_disk();
+  check_rank_counts("wall_growth", c, 800);
+  if (world_rank() == 0) {
+    const std::string base = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_wall_growth_";
+    test::ResultReader r1(base + "1/result.h5"), r4(base + "4/result.h5");
+    expect_same_series(r1, r4,
+                       {"wall_growth/floor/particles", "wall_growth/floor/mass",
+                        "wall_growth/engulfed_bodies", "bodies/position", "bodies/velocity"});
+    const auto grown = r1.series("wall_growth/floor/particles");
+    const auto engulfed = r1.series("wall_growth/engulfed_bodies");
+    std::printf("growing floor: %.0f particles taken, %.0f body engulfed after 800 steps\n",
+                grown.back(), engulfed.back());
+    EXPECT_GT(grown.back(), 0.0);
+    EXPECT_EQ(engulfed.back(), 1.0);
+  }
+  check_resume("wall_growth", c, 800, 600);
+  if (world_rank() != 0) return;
+  const std::string dir = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_wall_growth_resume_";
+  test::ResultReader rr(dir + "reference/result.h5");
+  for (int ranks : {4, 1}) {
+    test::ResultReader rs(dir + "resumed_" + std::to_string(ranks) + "/result.h5");
+    // Cumulative totals continue across the resume.
+    expect_same_series(
+        rr, rs,
+        {"wall_growth/floor/particles", "wall_growth/floor/mass", "wall_growth/engulfed_bodies"});
+  }
+}
+
 }  // namespace
 }  // namespace sph

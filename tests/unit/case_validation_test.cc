@@ -447,6 +447,53 @@ TEST(CaseValidation, SmoothingLengthRatio) {
   EXPECT_GT(e15.bytes, e1.bytes);
 }
 
+// A growing wall (solver/boundaries/wall_growth.h): a speed that never goes negative, and
+// no motion.
+TEST(CaseValidation, GrowingWallSpeedIsNonNegativeAndTheWallStill) {
+  const std::string floor =
+      "walls { name: \"floor\" shape { box { lo { x: 0.5 y: 0.2 } hi { x: 1.5 y: 0.5 } } } ";
+  auto errs = errors_of(floor + "growth_speed { constant: 0.1 end_time: 0.5 } }");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  errs =
+      errors_of(floor + "growth_speed { piecewise_linear { times: [0, 1] values: [0, 0.2] } } }");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  errs = errors_of(floor + "growth_speed { constant: -0.1 } }");
+  EXPECT_TRUE(has_error(errs, "walls[0].growth_speed.constant", "must be >= 0")) << dump(errs);
+  errs = errors_of(floor + "growth_speed { constant: inf } }");
+  EXPECT_TRUE(has_error(errs, "walls[0].growth_speed.constant", "must be finite")) << dump(errs);
+  errs = errors_of(floor + "growth_speed { sine { offset: 0.1 amplitude: 0.2 } } }");
+  EXPECT_TRUE(has_error(errs, "walls[0].growth_speed.sine", "offset must be >= |amplitude|"))
+      << dump(errs);
+  errs = errors_of(floor +
+                   "growth_speed { piecewise_constant { times: [0, 1] values: [0.1, -1] } } }");
+  EXPECT_TRUE(has_error(errs, "walls[0].growth_speed.piecewise_constant.values[1]", "must be >= 0"))
+      << dump(errs);
+  errs = errors_of(floor + "growth_speed { start_time: 1 } }");
+  EXPECT_TRUE(has_error(errs, "walls[0].growth_speed", "needs a speed")) << dump(errs);
+  errs =
+      errors_of(floor + "growth_speed { constant: 0.1 } motion { velocity_x { constant: 1 } } }");
+  EXPECT_TRUE(has_error(errs, "walls[0].growth_speed", "a growing wall cannot move")) << dump(errs);
+  errs = errors_of(
+      R"(walls { name: "dots" shape { points { points { x: 1 y: 0.45 } } } growth_speed { constant: 0.1 } })");
+  EXPECT_TRUE(has_error(errs, "walls[0].growth_speed", "no surface to grow from")) << dump(errs);
+}
+
+// A growing wall must keep clear of open-boundary buffers, as far as it grows by the end time.
+TEST(CaseValidation, GrowingWallKeepsClearOfOpenBoundaryBuffers) {
+  auto c =
+      load_case_file(std::string(SPHD_SOURCE_DIR) + "/cases/channel_inflow_outflow_2d.textproto");
+  c.mutable_walls(0)->mutable_growth_speed()->set_constant(0.1);
+  auto errs = validate_case(c, {});
+  EXPECT_TRUE(has_error(errs, "walls[0].growth_speed", "reaches the buffer of open_boundaries[0]"))
+      << dump(errs);
+  // Growing only between the buffers, 0.1 m/s for 1 s: clear of them.
+  c.mutable_walls(0)->mutable_shape()->mutable_box()->mutable_lo()->set_x(0.5);
+  c.mutable_walls(0)->mutable_shape()->mutable_box()->mutable_hi()->set_x(1.5);
+  c.mutable_time()->set_end_time(1);
+  errs = validate_case(c, {});
+  EXPECT_FALSE(has_error(errs, "walls[0].growth_speed", "reaches the buffer")) << dump(errs);
+}
+
 // A wall must hold particles wherever a first-row fluid particle's kernel support reaches
 // into it: lattice distances n dx < r_c, two layers at r_c = 3 dx, five at r_c = 6 dx.
 TEST(CaseValidation, WallsMustCoverTheKernelSupport) {
