@@ -93,9 +93,9 @@ class SurfaceTensionValidator {
       } else if (it->second != v1::SOLID) {
         error(bf, "material '" + b.solid_material() +
                       "' is not SOLID (bodies are made of SOLID materials)");
-      } else if (const auto [seen, fresh] = solids_seen.emplace(b.solid_material(), i); !fresh) {
+      } else if (const auto [prior, fresh] = solids_seen.emplace(b.solid_material(), i); !fresh) {
         error(bf, "duplicate contact angle for material '" + b.solid_material() +
-                      "' (already surface_tension.bodies[" + std::to_string(seen->second) + "])");
+                      "' (already surface_tension.bodies[" + std::to_string(prior->second) + "])");
       }
       angle_and_liquid("bodies", i, b.contact_angle(), b.material());
     }
