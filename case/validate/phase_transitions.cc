@@ -49,6 +49,15 @@ void Validator::phase_transitions() {
     if (pt.has_join_radius() && pt.join_radius() >= kernel_support_radius(c_))
       error(cat(f, "join_radius"), "must be smaller than the kernel support radius (" +
                                        num(kernel_support_radius(c_)) + ")");
+    // Only solidified particles merge bodies on touching; a transition that never freezes has
+    // none. The regrouping measures distances without periodic images, so two bodies touching
+    // across a periodic face would be found every step and never merged.
+    if (pt.merge_bodies() && !pt.reversible())
+      error(cat(f, "merge_bodies"),
+            "needs reversible: true (bodies merge where a solidified particle touches another "
+            "body; without solidification there is none)");
+    if (pt.merge_bodies() && (c_.periodic_x() || c_.periodic_y() || c_.periodic_z()))
+      error(cat(f, "merge_bodies"), "is not supported in a periodic domain");
     if (pt.has_max_bodies() && pt.max_bodies() < c_.bodies_size())
       error(cat(f, "max_bodies"), "must be >= the number of bodies in the case (" +
                                       std::to_string(c_.bodies_size()) + ")");

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <map>
 #include <numeric>
+#include <set>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -39,8 +40,9 @@ RotationMatrix<D> rotation_of(const RigidBody<D>& b) {
 
 template <int D>
 std::string BodyRegrouping<D>::run(ParticleStore<D>& s, RigidBodies<D>& bodies,
-                                   const std::vector<std::int64_t>& involved,
-                                   const Comm& comm) const {
+                                   const std::vector<std::int64_t>& involved, const Comm& comm,
+                                   const Column<std::int64_t>* solidified,
+                                   std::int64_t* merged) const {
   auto& bs = bodies.bodies();
   auto& body = bodies.body_index();
   auto& accel = bodies.particle_acceleration();
@@ -50,7 +52,15 @@ std::string BodyRegrouping<D>::run(ParticleStore<D>& s, RigidBodies<D>& bodies,
     if (s.kind[i] != Kind::kRigid) continue;
     const std::int32_t k = body[i];
     if (k >= 0 && !involved[static_cast<std::size_t>(k)]) continue;
-    Record rec{s.id[i], k, s.m[i], s.x[i], s.v[i], fluid_force[i]};
+    Record rec{s.id[i],
+               k,
+               s.material[i],
+               static_cast<std::uint8_t>(merges(s.material[i])),
+               static_cast<std::uint8_t>(solidified && (*solidified)[i] != 0),
+               s.m[i],
+               s.x[i],
+               s.v[i],
+               fluid_force[i]};
     mine.append(reinterpret_cast<const char*>(&rec), sizeof rec);
   }
   const std::string all = comm.allgather(mine);
@@ -58,7 +68,10 @@ std::string BodyRegrouping<D>::run(ParticleStore<D>& s, RigidBodies<D>& bodies,
   if (!recs.empty())  // memcpy to a null pointer is undefined even for 0 bytes
     std::memcpy(static_cast<void*>(recs.data()), all.data(), recs.size() * sizeof(Record));
   std::sort(recs.begin(), recs.end(), [](const Record& a, const Record& b) { return a.id < b.id; });
-  if (std::string error = regroup(recs, involved, bodies); !error.empty()) return error;
+  std::int64_t merged_here = 0;
+  if (std::string error = regroup(recs, involved, bodies, merged_here); !error.empty())
+    return error;
+  if (merged) *merged += merged_here;
 
   // The new body index, body-frame offset and rigid velocity (eq. 40) of the owned particles.
   auto& offset = bodies.offset();
@@ -95,7 +108,8 @@ std::map<std::size_t, std::vector<std::size_t>> BodyRegrouping<D>::pieces_of(
     return pieces;
   }
   const double jr = join_radius_;
-  // Links within the join radius: same body, or one of the two new (cell hashing).
+  // Links within the join radius: same body, or one of the two new (cell hashing), or both
+  // of one merging material with one of them solidified during the run (merge_touching).
   MinRootSets sets(n);
   std::unordered_map<std::int64_t, std::vector<std::size_t>> cells;
   auto key = [&](const Vec<D>& x, const std::array<int, 3>& d) {
@@ -114,8 +128,11 @@ std::map<std::size_t, std::vector<std::size_t>> BodyRegrouping<D>::pieces_of(
           if (it == cells.end()) continue;
           for (const std::size_t b : it->second) {
             if (b <= a) continue;
-            const bool linkable = recs[a].old_body == recs[b].old_body || recs[a].old_body < 0 ||
-                                  recs[b].old_body < 0;
+            const Record &ra = recs[a], &rb = recs[b];
+            const bool linkable = ra.old_body == rb.old_body || ra.old_body < 0 ||
+                                  rb.old_body < 0 ||
+                                  (ra.merges && rb.merges && ra.material == rb.material &&
+                                   (ra.solidified || rb.solidified));
             if (linkable && (recs[a].x - recs[b].x).squaredNorm() < jr2) sets.unite(a, b);
           }
         }
@@ -127,7 +144,7 @@ std::map<std::size_t, std::vector<std::size_t>> BodyRegrouping<D>::pieces_of(
 template <int D>
 std::string BodyRegrouping<D>::regroup(std::vector<Record>& recs,
                                        const std::vector<std::int64_t>& involved,
-                                       RigidBodies<D>& bodies) const {
+                                       RigidBodies<D>& bodies, std::int64_t& merged) const {
   auto& bs = bodies.bodies();
   const std::size_t n = recs.size(), nb_old = bs.size();
   const auto pieces = pieces_of(recs);
@@ -143,6 +160,11 @@ std::string BodyRegrouping<D>::regroup(std::vector<Record>& recs,
       if (it == main_piece.end() || m > it->second.first) main_piece[k] = {m, root};
     }
   }
+  // Old bodies that merged into another: each kept body has one main piece, and a piece
+  // keeping several is one body made of them.
+  std::set<std::size_t> keeping;
+  for (const auto& [k, share] : main_piece) keeping.insert(share.second);
+  merged = static_cast<std::int64_t>(main_piece.size() - keeping.size());
   const double self = RigidBodies<D>::self_inertia_per_mass(dx_);
   std::vector<RigidBody<D>> old(bs);  // states before the regrouping
   // Every involved body is emptied first (one that melted completely stays so); its pieces

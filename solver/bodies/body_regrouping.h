@@ -14,6 +14,12 @@
 // body gets the total linear and angular momentum of what it is made of. Particles that left
 // a body (melted, or deleted at an outlet) take their momentum with them.
 //
+// Bodies that merge on touching (merge_touching, PhaseTransition.merge_bodies): a rigid
+// particle of a merging material also links to one of another body of the same material when
+// one of the two has solidified during the run, so two such bodies that touch become one
+// piece, rebuilt like a piece a freezing particle joins (total linear and angular momentum).
+// The case's own bodies, as placed, do not glue to each other: only what froze does.
+//
 // Bodies cut at an outlet (Pieces::kWhole) are not split: a rigid body stays one body however
 // much of it is gone, even if what remains is not connected (a body built of separate shapes,
 // or a non-convex one cut across), so the pieces of each old body are simply its remaining
@@ -65,6 +71,12 @@ class BodyRegrouping {
   }
 
   std::size_t max_bodies() const { return max_bodies_; }
+  double join_radius() const { return join_radius_; }
+
+  // Bodies of the materials marked in `by_material` (indexed by material) merge on touching.
+  void merge_touching(std::vector<std::uint8_t> by_material) { merging_ = std::move(by_material); }
+  // Whether rigid particles of material m link across bodies (merge_touching).
+  bool merges(std::uint16_t m) const { return m < merging_.size() && merging_[m] != 0; }
 
   // `involved[k] != 0` for the bodies that lost or may gain particles (the first
   // bodies().size() entries, identical on every rank). Sets the body index, body-frame
@@ -72,20 +84,27 @@ class BodyRegrouping {
   // of the owned particles of the rebuilt bodies; a piece of one body keeps the rigid motion
   // of its particles, accelerations included (the wall condition may read them before the
   // next placement: a cut at an outlet happens mid-step). Collective. Returns an error when
-  // the run cannot go on, else "".
+  // the run cannot go on, else "". `solidified` (with merge_touching): per owned particle,
+  // non-zero when a rigid particle solidified during the run. `merged`, if given, is increased
+  // by the number of old bodies that merged into another (identical on every rank).
   std::string run(ParticleStore<D>& s, RigidBodies<D>& bodies,
-                  const std::vector<std::int64_t>& involved, const Comm& comm) const;
+                  const std::vector<std::int64_t>& involved, const Comm& comm,
+                  const Column<std::int64_t>* solidified = nullptr,
+                  std::int64_t* merged = nullptr) const;
 
  private:
   struct Record {  // a particle taking part in a regrouping
     ParticleId id;
     std::int32_t old_body;  // -1: new
+    std::uint16_t material;
+    std::uint8_t merges;      // links across bodies of its material (merge_touching)
+    std::uint8_t solidified;  // solidified during the run
     double m;
     Vec<D> x, v;
     Vec<D> f;  // fluid force on the particle (eq. 19) of this step; zero for a new one
   };
   std::string regroup(std::vector<Record>& recs, const std::vector<std::int64_t>& involved,
-                      RigidBodies<D>& bodies) const;
+                      RigidBodies<D>& bodies, std::int64_t& merged) const;
 
   // Which records form each piece: indices into the id-ordered records, keyed by their
   // smallest index.
@@ -96,6 +115,7 @@ class BodyRegrouping {
   std::size_t max_bodies_;
   double dx_;
   std::string slots_field_;
+  std::vector<std::uint8_t> merging_;  // per material: merges on touching
 };
 
 }  // namespace sph

@@ -21,13 +21,18 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
   // 1. Decide on the state at the end of the step (ghosts as built at its start, like the
   //    owned particles' kinds and bodies), before anything changes: rank-independent.
   std::vector<std::pair<std::size_t, const PhaseRule*>> melt, freeze;
-  // Per body, then the counts of melted, solidified and reversing particles.
-  std::vector<std::int64_t> involved(nb + 3, 0);
+  // Per body, then the counts of melted, solidified, reversing and touching particles.
+  std::vector<std::int64_t> involved(nb + 4, 0);
+  // Bodies that merge on touching link at the regrouping's radius, so that every pair found
+  // here links there and the check does not find the same pair again next step.
+  const double merge_r2 = regrouping_.join_radius() * regrouping_.join_radius();
   for (std::size_t i = 0; i < s.owned(); ++i) {
+    bool melts = false;
     for (const PhaseRule& r : rules_) {
       if (s.kind[i] == Kind::kRigid && s.material[i] == r.solid && value(r, i) > r.melt_above) {
         melt.push_back({i, &r});
         involved[static_cast<std::size_t>(body[i])] = 1;
+        melts = true;
         break;
       }
       if (s.kind[i] == Kind::kFluid && r.reversible && s.material[i] == r.fluid &&
@@ -42,6 +47,20 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
         break;
       }
     }
+    // A solidified particle (rigid, its last transition a freezing) next to a particle of
+    // another body of its material: both bodies merge. Seen from the solidified particle's
+    // owner, whose list is the same on any rank count.
+    if (merging_ && !melts && s.kind[i] == Kind::kRigid && changed_[i] > 0 &&
+        regrouping_.merges(s.material[i]))
+      for (const std::uint32_t* jp = nl.fluid_end(i); jp != nl.end(i); ++jp) {
+        const std::uint32_t j = *jp;
+        if (s.kind[j] != Kind::kRigid || s.material[j] != s.material[i] || body[j] == body[i] ||
+            body[j] < 0 || (s.x[i] - s.x[j]).squaredNorm() >= merge_r2)
+          continue;
+        involved[static_cast<std::size_t>(body[i])] = 1;
+        involved[static_cast<std::size_t>(body[j])] = 1;
+        ++involved[nb + 3];
+      }
   }
   // Reversals: particles changing phase again, and the fewest steps since their last change.
   std::int64_t shortest = std::numeric_limits<std::int64_t>::max();
@@ -58,7 +77,8 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
   comm.sum_inplace(involved);
   out.melted = involved[nb];
   out.solidified = involved[nb + 1];
-  if (out.melted == 0 && out.solidified == 0) return out;
+  out.touching = involved[nb + 3];
+  if (out.melted == 0 && out.solidified == 0 && out.touching == 0) return out;
   melted_total_ += out.melted;
   solidified_total_ += out.solidified;
   if (involved[nb + 2] > 0) {  // a global count: every rank takes part in the minimum
@@ -92,8 +112,10 @@ typename PhaseTransitions<D>::Outcome PhaseTransitions<D>::run(
     fluid_force[i] = s.m[i] * (s.a[i] - fluid_body_force);
   }
 
-  // 3. Rebuild the bodies that lost or may gain particles.
-  out.error = regrouping_.run(s, bodies, involved, comm);
+  // 3. Rebuild the bodies that lost or may gain particles, or touch.
+  out.error =
+      regrouping_.run(s, bodies, involved, comm, merging_ ? &changed_ : nullptr, &out.merged);
+  merged_total_ += out.merged;
   return out;
 }
 

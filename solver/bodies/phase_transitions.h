@@ -18,6 +18,16 @@
 // velocities); melted particles carry their momentum into the fluid, so momentum is conserved
 // throughout.
 //
+// Bodies that merge on touching (PhaseRule::merge_bodies): a solidified rigid particle of the
+// rule's solid closer than the join radius to a rigid particle of another body of the same
+// material involves both bodies, and the regrouping links them into one (BodyRegrouping::
+// merge_touching). Eq. 29 links a freezing particle to the bodies within the join radius at
+// the moment it freezes; a particle that froze farther away stays a body of its own for good
+// unless bodies that come together later merge too. The check reads the neighbour lists of
+// the step (rigid particles list their rigid neighbours when conduction or diffusion runs,
+// which a transition needs), so it costs a pass over the solidified particles' non-fluid
+// neighbours per step and no search.
+//
 // Flicker, a particle changing phase back and forth while its value hovers at the threshold,
 // is what the hysteresis band prevents; the run measures it. Every particle carries the step
 // of its last transition, and a transition of a particle that has changed phase before is a
@@ -42,6 +52,7 @@ struct PhaseRule {
   double melt_above = 0, freeze_below = 0;
   bool reversible = false;
   double join_radius = 0;
+  bool merge_bodies = false;  // bodies of `solid` merge on touching
 };
 
 template <int D>
@@ -58,11 +69,24 @@ class PhaseTransitions {
         changed_(s.template add<std::int64_t>("phase_changed_at", kName, true)) {
     changed_.set_ghost(false);
     changed_.set_zero_if_absent(true);
+    std::vector<std::uint8_t> merging;
+    for (const PhaseRule& r : rules_)
+      if (r.merge_bodies) {
+        merging.resize(std::max<std::size_t>(merging.size(), r.solid + 1u), 0);
+        merging[r.solid] = 1;
+      }
+    merging_ = !merging.empty();
+    if (merging_) regrouping_.merge_touching(std::move(merging));
   }
 
   struct Outcome {
     std::int64_t melted = 0, solidified = 0;  // this step, all ranks
-    std::string error;                        // non-empty: the run cannot go on
+    // Pairs of a solidified particle and a particle of another body of its material within
+    // the join radius (counted from the solidified particle; merge_bodies only), and the
+    // bodies that merged into another this step (by touching, or by a freezing particle
+    // linking them).
+    std::int64_t touching = 0, merged = 0;
+    std::string error;  // non-empty: the run cannot go on
   };
 
   // Collective, at the end of step `step`. `temperature`/`concentration` may be null when no
@@ -80,6 +104,8 @@ class PhaseTransitions {
   std::int64_t reversals_total() const { return reversals_total_; }
   // The fewest steps between two transitions of one particle so far (0: no reversal yet).
   std::int64_t shortest_reversal() const { return shortest_reversal_; }
+  // Bodies that merged into another, all ranks, since the start.
+  std::int64_t merged_total() const { return merged_total_; }
   std::size_t max_bodies() const { return regrouping_.max_bodies(); }
   // The running totals are cumulative series: a resumed run continues them.
   void save(CheckpointState& state) const {
@@ -87,6 +113,7 @@ class PhaseTransitions {
     state["phase_solidified_total"] = static_cast<double>(solidified_total_);
     state["phase_reversals_total"] = static_cast<double>(reversals_total_);
     state["phase_shortest_reversal"] = static_cast<double>(shortest_reversal_);
+    state["phase_merged_total"] = static_cast<double>(merged_total_);
   }
   // Checkpoints written before a total was saved restart it at zero.
   void load(const CheckpointState& state) {
@@ -97,6 +124,7 @@ class PhaseTransitions {
     total("phase_solidified_total", solidified_total_);
     total("phase_reversals_total", reversals_total_);
     total("phase_shortest_reversal", shortest_reversal_);
+    total("phase_merged_total", merged_total_);
   }
 
  private:
@@ -110,8 +138,10 @@ class PhaseTransitions {
   BodyRegrouping<D> regrouping_;
   // Per particle: 1 + the step of its last transition, 0 if it has not changed phase.
   Column<std::int64_t>& changed_;
+  bool merging_ = false;  // a rule's bodies merge on touching
   std::int64_t melted_total_ = 0, solidified_total_ = 0;
   std::int64_t reversals_total_ = 0, shortest_reversal_ = 0;
+  std::int64_t merged_total_ = 0;
 };
 
 }  // namespace sph

@@ -493,7 +493,7 @@ std::string Simulation<D, K>::apply_phase_transitions() {
     std::snprintf(buf, sizeof buf, " at step %lld, t = %.9g", static_cast<long long>(step_), t_);
     return out.error + buf;
   }
-  if (out.melted + out.solidified > 0) {  // all ranks: the counts are global
+  if (out.melted + out.solidified + out.touching > 0) {  // all ranks: the counts are global
     // Particles changed kind and body after this step's search: the ghosts and the contact
     // candidates are those of before (a melted particle would push its old neighbours as a
     // wall, a merged body would keep contacts within itself), so refresh the ghosts and sort

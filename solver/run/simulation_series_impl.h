@@ -205,6 +205,7 @@ void Simulation<D, K>::sample_bodies() {
     recorder_.result().put("phase/reversals", static_cast<double>(phase_->reversals_total()));
     recorder_.result().put("phase/shortest_reversal_steps",
                            static_cast<double>(phase_->shortest_reversal()));
+    recorder_.result().put("phase/merged_bodies", static_cast<double>(phase_->merged_total()));
   }
 }
 

@@ -200,6 +200,7 @@ void Simulation<D, K>::build_phase_transitions() {
     r.freeze_below = pt.transition_value() - 0.5 * pt.hysteresis();
     r.reversible = pt.reversible();
     r.join_radius = pt.has_join_radius() ? pt.join_radius() : 1.5 * dx_;
+    r.merge_bodies = pt.merge_bodies();
     rules.push_back(r);
     slots =
         std::max(slots, pt.has_max_bodies() ? static_cast<std::size_t>(pt.max_bodies())

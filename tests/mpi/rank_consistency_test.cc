@@ -327,6 +327,37 @@ TEST(RankConsistency, MeltingAndFreezingWithNewAndMergingBodiesAcrossRanks) {
   }
 }
 
+// Two drops frozen into bodies at the first step, thrown at each other, merge where they touch
+// (PhaseTransition.merge_bodies): the touching pairs are found on the owners of the
+// solidified particles, some of them next to ghosts, and the merged body is rebuilt from
+// particles on several ranks.
+constexpr std::int64_t kDropsSteps = 100;
+
+TEST(RankConsistency, FrozenDropsMergeAcrossRanks) {
+  auto c = test::load_case("frozen_drops_merge_2d");
+  check_rank_counts("drops_merge", c, kDropsSteps);
+  if (world_rank() != 0) return;
+  const std::string base = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_drops_merge_";
+  test::ResultReader r1(base + "1/result.h5"), r2(base + "2/result.h5"), r4(base + "4/result.h5");
+  const auto merged = r1.series("phase/merged_bodies");
+  const auto bodies = r1.series("phase/active_bodies");
+  const auto step = r1.series("diagnostics/step");
+  const auto at = static_cast<std::size_t>(
+      std::find_if(merged.begin(), merged.end(), [](double m) { return m > 0; }) - merged.begin());
+  std::printf("frozen drops: %g solidified, bodies %g -> %g, merged at step %g\n",
+              r1.series("phase/solidified").back(), bodies[1], bodies.back(),
+              at < step.size() ? step[at] : -1.0);
+  EXPECT_EQ(bodies[1], 2.0);      // two drops frozen apart at the first step ...
+  EXPECT_EQ(bodies.back(), 1.0);  // ... that merged
+  EXPECT_EQ(merged.back(), 1.0);
+  for (const test::ResultReader* r : {&r2, &r4}) {
+    EXPECT_EQ(merged, r->series("phase/merged_bodies"));
+    EXPECT_EQ(bodies, r->series("phase/active_bodies"));
+    expect_same_series(r1, *r,
+                       {"bodies/mass", "bodies/position", "bodies/velocity", "bodies/inertia"});
+  }
+}
+
 TEST(RankConsistency, PowderMelting3DAcrossRanks) {
   // The 3D seed scene (coarse) with its grains started a thousandth of a kelvin below their
   // melting point: in 3D, particles leave bodies spread over ranks and the bodies (quaternion
@@ -581,10 +612,11 @@ void check_resume(const std::string& name, v1::Case c, std::int64_t steps, int a
       const auto k = static_cast<std::size_t>(
           std::find(step.begin(), step.end(), static_cast<double>(at)) - step.begin());
       ASSERT_LT(k, step.size()) << "no sample at the checkpoint's step";
-      EXPECT_GT(melted[k], 0.0) << "nothing to carry over at the checkpoint";
+      EXPECT_GT(melted[k] + rr.series("phase/solidified")[k], 0.0)
+          << "nothing to carry over at the checkpoint";
     }
-    for (const char* n :
-         {"phase/melted", "phase/solidified", "phase/reversals", "phase/shortest_reversal_steps"})
+    for (const char* n : {"phase/melted", "phase/solidified", "phase/reversals",
+                          "phase/shortest_reversal_steps", "phase/merged_bodies"})
       if (rr.has_series(n)) {
         EXPECT_EQ(rs.series(n), rr.series(n)) << n << ", " << ranks << " ranks";
       }
@@ -626,6 +658,28 @@ TEST(RankConsistency, MeltingAndFreezingResumesFromCheckpointOnAnyRankCount) {
   auto c = melt_freeze_by_the_hot_wall();
   c.mutable_output()->set_series_interval(1e-12);  // every step: rows after the checkpoint
   check_resume("melt_freeze", c, 600, 250);
+}
+
+TEST(RankConsistency, FrozenDropsMergeAfterAResume) {
+  // The checkpoint falls while the two frozen drops are still apart: which particles
+  // solidified (each particle's last transition, a checkpointed column) decides that they
+  // merge after the resume, on any rank count.
+  auto c = test::load_case("frozen_drops_merge_2d");
+  c.mutable_output()->set_series_interval(1e-12);  // every step: rows after the checkpoint
+  check_resume("drops_merge", c, kDropsSteps, 10);
+  if (world_rank() != 0) return;
+  const std::string dir = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_drops_merge_resume_";
+  test::ResultReader rr(dir + "reference/result.h5");
+  const auto merged = rr.series("phase/merged_bodies");
+  const auto step = rr.series("diagnostics/step");
+  const auto k = static_cast<std::size_t>(std::find(step.begin(), step.end(), 10.0) - step.begin());
+  ASSERT_LT(k, step.size());
+  EXPECT_EQ(merged[k], 0.0);      // apart at the checkpoint ...
+  EXPECT_EQ(merged.back(), 1.0);  // ... merged after it
+  for (int ranks : {4, 1}) {
+    test::ResultReader rs(dir + "resumed_" + std::to_string(ranks) + "/result.h5");
+    expect_same_series(rr, rs, {"bodies/mass", "bodies/position", "bodies/velocity"});
+  }
 }
 
 TEST(RankConsistency, ABodyHalfwayThroughTheOutletResumesFromCheckpoint) {

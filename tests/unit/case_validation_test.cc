@@ -340,6 +340,26 @@ phase_transitions { solid_material: "s" fluid_material: "melt" driver: TEMPERATU
       << dump(errs);
 }
 
+TEST(CaseValidation, MergingBodiesNeedSolidificationAndNoPeriodicFaces) {
+  const std::string melt =
+      R"(materials { name: "s" phase: SOLID density: 1000 heat_capacity: 1 thermal_conductivity: 1 }
+materials { name: "melt" density: 1000 eos { sound_speed: 10 } heat_capacity: 1 thermal_conductivity: 1 }
+thermal { }
+)";
+  auto errs = errors_of(melt + R"(phase_transitions { solid_material: "s" fluid_material: "melt"
+                    driver: TEMPERATURE merge_bodies: true })");
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].merge_bodies", "needs reversible: true"))
+      << dump(errs);
+  errs = errors_of(melt + R"(periodic_x: true
+phase_transitions { solid_material: "s" fluid_material: "melt" driver: TEMPERATURE
+                    reversible: true merge_bodies: true })");
+  EXPECT_TRUE(has_error(errs, "phase_transitions[0].merge_bodies", "periodic domain"))
+      << dump(errs);
+  errs = errors_of(melt + R"(phase_transitions { solid_material: "s" fluid_material: "melt"
+                    driver: TEMPERATURE reversible: true merge_bodies: true })");
+  EXPECT_FALSE(has_error(errs, "phase_transitions[0].merge_bodies", "")) << dump(errs);
+}
+
 TEST(CaseValidation, RigidBodiesAndContact) {
   auto errs = errors_of(R"(bodies { name: "disk" })");
   EXPECT_TRUE(has_error(errs, "bodies[0].shape", "is required")) << dump(errs);
