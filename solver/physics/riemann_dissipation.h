@@ -20,8 +20,8 @@
 //   D_i = rho_i / c sum_j V_j (p_i - p_j) / rho_bar (dW/dr)_ij,
 // a diffusion of pressure (with p = c^2 (rho - rho0) near rho0 it is c sum_j V_j
 // (rho_i - rho_j) dW/dr: the density diffusion of delta-SPH with delta h in place of |r_ij|/2,
-// about delta = 0.5 to 1.5 over the quintic's support). This unit adds D_i; the built-in
-// continuity stage adds the rest.
+// delta = |r_ij|/(2h), up to 1.5 at the quintic's support radius). This unit adds D_i; the
+// built-in continuity stage adds the rest.
 //
 // Hydrostatic correction (on by default): like the Molteni-Colagrossi density diffusion, D_i
 // diffuses the hydrostatic pressure gradient wherever the kernel support is cut, which at a
