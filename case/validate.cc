@@ -31,6 +31,7 @@ std::vector<FieldError> validate_case(const v1::Case& c, const ValidationLimits&
   v.run_settings();
   v.density_diffusion();
   v.particle_shifting();
+  v.riemann_dissipation();
   v.probes();
   v.case_size();
   return v.reported();

@@ -54,6 +54,7 @@ class Validator {
   void run_settings();                                                 // run_settings.cc
   void density_diffusion();                                            // density_diffusion.cc
   void particle_shifting();                                            // particle_shifting.cc
+  void riemann_dissipation();                                          // riemann_dissipation.cc
   void probes();                                                       // probes.cc
   void case_size();                                                    // case_size.cc
 

@@ -9,6 +9,7 @@
 #include "solver/elastic/elastic_solid.h"
 #include "solver/physics/density_diffusion.h"
 #include "solver/physics/particle_shifting.h"
+#include "solver/physics/riemann_dissipation.h"
 #include "solver/physics/scalar_transport.h"
 #include "solver/physics/surface_tension.h"
 #include "solver/physics/wall_motion.h"
@@ -52,6 +53,18 @@ std::vector<std::unique_ptr<Unit<D>>> make_units(const UnitBuildContext<D>& b) {
       units.push_back(std::make_unique<DensityDiffusion<D>>(
           b.c.fluid_model().density_diffusion(), b.fluids[fluid],
           b.body_force ? *b.body_force : none, b.h, b.wall_volume, b.cfl_factor));
+    }
+  }
+  if (b.c.fluid_model().has_riemann_dissipation()) {
+    // Validation admits it with one fluid material only (solver/physics/riemann_dissipation.h);
+    // its momentum term runs first in kForces, right after the fluid forces it completes.
+    std::size_t fluid = 0;
+    while (fluid < b.fluids.size() && !b.fluids[fluid].fluid) ++fluid;
+    if (fluid < b.fluids.size()) {
+      const BodyForce<D> none(Vec<D>::Zero(), 0.0, Vec<D>::Zero());
+      units.push_back(std::make_unique<RiemannDissipation<D>>(
+          b.c.fluid_model().riemann_dissipation(), b.fluids[fluid],
+          b.body_force ? *b.body_force : none, b.wall_volume));
     }
   }
   if (b.wall_index) {

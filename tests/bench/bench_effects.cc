@@ -2,10 +2,11 @@
 // fluid only, + heat conduction, + concentration diffusion, + a rigid body, + contact, + heat
 // with bodies and contact, + phase change (the disk melting from its rim), + a drop of a second
 // fluid in place of the disk, + surface tension between the two fluids, the fluid with density
-// by the continuity equation without and with density diffusion, the fluid without the
-// transport velocity and with particle shifting instead of it, the box's walls growing into
-// the fluid around the disk, and for each the time per step by unit and the per-particle
-// storage by unit. A unit a scene does not use must show no time and no storage.
+// by the continuity equation without and with density diffusion or Riemann dissipation (in the
+// continuity equation, and in it and the momentum equation), the fluid without the transport
+// velocity and with particle shifting instead of it, the box's walls growing into the fluid
+// around the disk, and for each the time per step by unit and the per-particle storage by unit.
+// A unit a scene does not use must show no time and no storage.
 //
 //   bench_effects [--steps S] [--dx DX] [--pair-kernel compact|table|stream] [--only LABEL_PART]
 #include <mpi.h>
@@ -27,6 +28,8 @@ struct Effects {
   bool plate = false;                  // an elastic plate standing on the floor, clamped there
   bool continuity = false;             // density by the continuity equation, not summation
   bool density_diffusion = false;      // with its density diffusion (Fourtakas, delta 0.1)
+  bool riemann = false;                // with Riemann dissipation (CONTINUITY)
+  bool riemann_momentum = false;       // with Riemann dissipation (CONTINUITY_AND_MOMENTUM)
   // The contact model with `contact` (docs/contact.md): the spring-dashpot with a damping,
   // with the damping from a restitution, impulses, Glowinski's repulsion.
   enum class Law {
@@ -122,11 +125,16 @@ elastic_bodies { name: "plate" material: "rubber" shape { box { lo { x: 0.024 y:
     t +=
         R"(phase_transitions { solid_material: "solid" fluid_material: "melt" driver: TEMPERATURE transition_value: 300.5 hysteresis: 0.2 reversible: true }
 )";
-  t += e.continuity ? "fluid_model { density: CONTINUITY transport_velocity: true " +
-                          std::string(e.density_diffusion
-                                          ? "density_diffusion { form: FOURTAKAS delta: 0.1 } "
-                                          : "") +
-                          "}\n"
+  t += e.continuity
+           ? "fluid_model { density: CONTINUITY transport_velocity: true " +
+                 std::string(e.density_diffusion
+                                 ? "density_diffusion { form: FOURTAKAS delta: 0.1 } "
+                                 : "") +
+                 std::string(e.riemann ? "riemann_dissipation { scope: CONTINUITY } " : "") +
+                 std::string(e.riemann_momentum ? "riemann_dissipation { scope: "
+                                                  "CONTINUITY_AND_MOMENTUM } "
+                                                : "") +
+                 "}\n"
        : e.no_transport || e.shifting
            ? "fluid_model { density: SUMMATION " +
                  std::string(e.shifting ? "particle_shifting { } " : "") + "}\n"
@@ -225,6 +233,9 @@ int main(int argc, char** argv) {
       {"+ heat + elastic plate (thermal FSI)", {.heat = true, .plate = true}},
       {"continuity density", {.continuity = true}},
       {"continuity + density diffusion", {.continuity = true, .density_diffusion = true}},
+      {"continuity + Riemann dissipation", {.continuity = true, .riemann = true}},
+      {"continuity + Riemann dissipation (momentum)",
+       {.continuity = true, .riemann_momentum = true}},
       {"shifting: no transport velocity", {.no_transport = true}},
       {"shifting: on", {.shifting = true}},
       {"+ rigid body + growing walls", {.body = true, .grow = true}},

@@ -1009,6 +1009,23 @@ TEST(RankConsistency, DensityDiffusionAcrossRanksAndResume) {
   check_resume("density_diffusion", c, 1200, 601);
 }
 
+// Riemann dissipation (solver/physics/riemann_dissipation.h) in the continuity and the
+// momentum equation: the continuity term reads the neighbours' pressure and density before the
+// continuity equation and refreshes the ghosts' density after it; the momentum term reads the
+// ghosts' velocity and density of the force pass. The dam break without artificial viscosity
+// (the limited momentum term stands in for it), 1200 steps, on 1/2/4 ranks and resumed on 1
+// and 4 ranks from a checkpoint at step 601.
+TEST(RankConsistency, RiemannDissipationAcrossRanksAndResume) {
+  auto c = test::load_case("dambreak_2d");
+  c.set_dx(0.05);  // 400 fluid particles
+  c.mutable_fluid_model()->set_artificial_viscosity(0);
+  c.mutable_fluid_model()->mutable_riemann_dissipation()->set_scope(
+      v1::RiemannDissipation::CONTINUITY_AND_MOMENTUM);
+  check_rank_counts("riemann_dissipation", c, 1200);
+  c.mutable_output()->set_series_interval(1e-12);  // every step: rows after the checkpoint
+  check_resume("riemann_dissipation", c, 1200, 601);
+}
+
 v1::Contact parse_contact(const std::string& text) {
   return parse_case_text("contact { " + text + " }").contact();
 }

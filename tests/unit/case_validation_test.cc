@@ -120,6 +120,44 @@ TEST(CaseValidation, ParticleShiftingCoefficientsAndWhatItRefuses) {
       << dump(errs);
 }
 
+TEST(CaseValidation, RiemannDissipationScopeLimiterAndWhatItRefuses) {
+  const std::string rd = "fluid_model { density: CONTINUITY riemann_dissipation { ";
+  EXPECT_TRUE(errors_of(rd + "} }").empty()) << dump(errors_of(rd + "} }"));
+  EXPECT_TRUE(errors_of(rd + "scope: CONTINUITY_AND_MOMENTUM limiter_eta: 3 } }").empty());
+  for (const char* bad : {"limiter_eta: 0", "limiter_eta: -3", "limiter_eta: 2e6"}) {
+    const auto errs = errors_of(rd + bad + " } }");
+    EXPECT_TRUE(
+        has_error(errs, "fluid_model.riemann_dissipation.limiter_eta", "must be in (0, 1e6]"))
+        << bad << ": " << dump(errs);
+  }
+  auto errs = errors_of(rd + "scope: 7 } }");
+  EXPECT_TRUE(has_error(errs, "fluid_model.riemann_dissipation.scope",
+                        "must be CONTINUITY or CONTINUITY_AND_MOMENTUM"))
+      << dump(errs);
+  errs = errors_of("fluid_model { riemann_dissipation { } }");  // unspecified = summation
+  EXPECT_TRUE(
+      has_error(errs, "fluid_model.riemann_dissipation", "needs fluid_model.density: CONTINUITY"))
+      << dump(errs);
+  errs = errors_of(
+      "fluid_model { density: CONTINUITY density_diffusion { } riemann_dissipation { } }");
+  EXPECT_TRUE(has_error(errs, "fluid_model.riemann_dissipation",
+                        "cannot be combined with fluid_model.density_diffusion"))
+      << dump(errs);
+  EXPECT_TRUE(errors_of("fluid_model { density: CONTINUITY artificial_viscosity: 0.1 "
+                        "riemann_dissipation { scope: CONTINUITY } }")
+                  .empty());
+  errs = errors_of(
+      "fluid_model { density: CONTINUITY artificial_viscosity: 0.1 riemann_dissipation { scope: "
+      "CONTINUITY_AND_MOMENTUM } }");
+  EXPECT_TRUE(has_error(errs, "fluid_model.riemann_dissipation.scope",
+                        "set fluid_model.artificial_viscosity to 0"))
+      << dump(errs);
+  errs = errors_of(rd + "} }\nmaterials { name: \"air\" density: 1 eos { sound_speed: 10 } }");
+  EXPECT_TRUE(
+      has_error(errs, "fluid_model.riemann_dissipation", "one fluid material; the case has 2"))
+      << dump(errs);
+}
+
 TEST(CaseValidation, OutputIntervalBoundsTheSnapshotCount) {
   // end_time 1 / interval 1e-9: a billion snapshot times would be stored before the run.
   EXPECT_TRUE(
