@@ -81,6 +81,13 @@ class SurfaceTensionValidator {
       }
       angle_and_liquid("walls", i, w.contact_angle(), w.material());
     }
+    // One angle per SOLID material at most: a longer list is wrong whatever it holds.
+    if (st.bodies_size() > kMaxMaterials) {
+      error("surface_tension.bodies", "has " + std::to_string(st.bodies_size()) +
+                                          " entries; at most " + std::to_string(kMaxMaterials) +
+                                          " (one per material) are allowed");
+      return std::move(errors_);
+    }
     std::map<std::string, int> solids_seen;
     for (int i = 0; i < st.bodies_size(); ++i) {
       const auto& b = st.bodies(i);

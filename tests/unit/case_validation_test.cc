@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "case/case_limits.h"
 #include "case/estimate.h"
 #include "case/load.h"
 #include "case/validate.h"
@@ -759,6 +760,15 @@ TEST(CaseValidation, SurfaceTensionContactAnglesAtBodies) {
       << dump(errs);
   EXPECT_TRUE(has_error(errs, "surface_tension.bodies[4].solid_material", "is required"))
       << dump(errs);
+  std::string many = m + "surface_tension { " + pair;
+  for (int i = 0; i <= kMaxMaterials; ++i)
+    many += R"(bodies { solid_material: "steel" contact_angle: 30 material: "water" } )";
+  errs = errors_of(many + "}");
+  EXPECT_TRUE(has_error(errs, "surface_tension.bodies",
+                        "has " + std::to_string(kMaxMaterials + 1) + " entries; at most " +
+                            std::to_string(kMaxMaterials)))
+      << dump(errs);
+  EXPECT_EQ(errs.size(), 1u) << dump(errs);
 }
 
 // Elastic bodies (case/validate/elastic_bodies.cc). The base case's fluid fills [0.5, 1.5]^2;
