@@ -232,7 +232,8 @@ void check_counts(const v1::Case& c, std::vector<FieldError>& errors) {
 // to the region that takes them over their limit.
 void check_shapes(const v1::Case& c, std::vector<FieldError>& errors) {
   ShapeTreeSize total;
-  bool shapes_over = false, vertices_over = false, points_over = false, triangles_over = false;
+  bool shapes_over = false, vertices_over = false, points_over = false, triangles_over = false,
+       nodes_over = false;
   auto region = [&](const v1::Shape& s, const std::string& field) {
     const ShapeTreeSize n = measure_shape(s);
     if (n.depth > kMaxShapeDepth) errors.push_back({field, shape_depth_error(n.depth)});
@@ -240,6 +241,7 @@ void check_shapes(const v1::Case& c, std::vector<FieldError>& errors) {
     total.polygon_vertices += n.polygon_vertices;
     total.points += n.points;
     total.mesh_triangles += n.mesh_triangles;
+    total.grid_nodes += n.grid_nodes;
     if (!shapes_over && total.shapes > kMaxShapes) {
       shapes_over = true;
       errors.push_back({field, "the case has " + std::to_string(total.shapes) +
@@ -257,6 +259,12 @@ void check_shapes(const v1::Case& c, std::vector<FieldError>& errors) {
       errors.push_back({field, "the case has " + std::to_string(total.mesh_triangles) +
                                    " mesh triangles up to here; the limit is " +
                                    std::to_string(kMaxMeshTriangles)});
+    }
+    if (!nodes_over && total.grid_nodes > kMaxDistanceGridNodes) {
+      nodes_over = true;
+      errors.push_back({field, "the case has " + std::to_string(total.grid_nodes) +
+                                   " distance-grid nodes up to here; the limit is " +
+                                   std::to_string(kMaxDistanceGridNodes)});
     }
     if (!points_over && total.points > kMaxPointsPerCase) {
       points_over = true;
@@ -344,6 +352,7 @@ ShapeTreeSize measure_shape(const v1::Shape& s) {
     if (shape->has_polygon()) n.polygon_vertices += shape->polygon().vertices_size();
     if (shape->has_points()) n.points += shape->points().points_size();
     if (shape->has_mesh()) n.mesh_triangles += shape->mesh().triangles_size() / 3;
+    if (shape->has_distance_grid()) n.grid_nodes += shape->distance_grid().values_size();
     for_each_part(*shape, [&](const v1::Shape& p) { stack.emplace_back(&p, depth + 1); });
   }
   return n;

@@ -18,6 +18,7 @@ struct ShapeTreeSize {
   int polygon_vertices = 0;
   int points = 0;                   // explicit points of point sets
   std::int64_t mesh_triangles = 0;  // triangles of meshes
+  std::int64_t grid_nodes = 0;      // values of signed-distance grids
 };
 ShapeTreeSize measure_shape(const v1::Shape& s);
 

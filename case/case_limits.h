@@ -20,6 +20,9 @@ inline constexpr int kMaxPolygonVertices = 100000;
 // Triangles of all meshes in a case (TriangleMesh, inlined from STL files): 500000 triangles
 // inline to about 18 MB of case, and a distance query walks a hierarchy over them.
 inline constexpr int kMaxMeshTriangles = 500000;
+// Nodes of all signed-distance grids in a case (DistanceGrid, inlined from HDF5 files): a
+// million values inline to about 30 MB of case text, below the service's 48 MiB.
+inline constexpr int kMaxDistanceGridNodes = 1000000;
 
 // --- Text -----------------------------------------------------------------------------------
 // Message nesting the text-format parser follows: a shape at depth n sits 2n messages below

@@ -1,5 +1,6 @@
 #include "case/geometry.h"
 
+#include "case/distance_grid/distance_grid_shape.h"
 #include "case/mesh/mesh_shape.h"
 
 #include <algorithm>
@@ -306,6 +307,8 @@ std::unique_ptr<Shape> compile(const v1::Shape& s, int dim, double t, double exa
     }
     case v1::Shape::kMesh:
       return std::make_unique<MeshShape>(mesh_from_proto(s.mesh()), exact_within);
+    case v1::Shape::kDistanceGrid:
+      return std::make_unique<DistanceGridShape>(s.distance_grid(), dim);
     case v1::Shape::kShell: {
       const double thickness = s.shell().has_thickness() ? s.shell().thickness() : t;
       return std::make_unique<ShellShape>(

@@ -13,6 +13,7 @@
 #include "case/case_bounds.h"
 #include "case/case_limits.h"
 #include "case/data_lines.h"
+#include "case/distance_grid/read_distance_grid.h"
 #include "case/mesh/triangle_mesh.h"
 #include "case/reference_data.h"
 #include "case/text_nesting.h"
@@ -84,12 +85,14 @@ std::vector<v1::Vec3> read_point_file(const std::string& path, const std::string
   return points;
 }
 
-// Explicit points, polygon vertices and mesh triangles the case holds (inlined or read so
-// far), for the per-case budgets.
+// Explicit points, polygon vertices, mesh triangles and distance-grid nodes the case holds
+// (inlined or read so far), for the per-case budgets.
 struct PointBudget {
   int used = 0;
   int polygon_vertices = 0;
   std::int64_t mesh_triangles = 0;
+  std::int64_t grid_nodes = 0;
+  int dimension = 3;  // of the case: the axes a distance grid's dataset must have
 };
 
 // Recursion over the shape tree: callers check its depth first (measure_shape).
@@ -144,6 +147,24 @@ void inline_shape(v1::Shape& s, const std::string& base, const std::string& fiel
         }
         budget.mesh_triangles += mesh->triangles_size() / 3;
         mesh->clear_file();
+      }
+      break;
+    }
+    case v1::Shape::kDistanceGrid: {
+      auto* grid = s.mutable_distance_grid();
+      if (!grid->file().empty()) {
+        const std::filesystem::path p = beside_case(base, grid->file());
+        const auto left = static_cast<std::size_t>(
+            std::max<std::int64_t>(0, kMaxDistanceGridNodes - budget.grid_nodes));
+        // A case of another dimension is refused by validation; read as 3D meanwhile.
+        const int dim = budget.dimension == 2 ? 2 : 3;
+        try {
+          read_distance_grid(p.string(), dim, left, *grid);
+        } catch (const std::runtime_error& e) {
+          throw CaseLoadError(field + ".distance_grid.file: " + e.what());
+        }
+        budget.grid_nodes += grid->values_size();
+        grid->clear_file();
       }
       break;
     }
@@ -216,12 +237,14 @@ v1::Case parse_case_text(const std::string& text) {
 void inline_point_files(v1::Case& c, const std::string& base_dir) {
   // The walk below recurses over shapes: refuse a tree deeper than validation allows first.
   PointBudget budget;
+  budget.dimension = c.dimension();
   auto region = [&](v1::Shape& s, const std::string& field) {
     const ShapeTreeSize n = measure_shape(s);
     if (n.depth > kMaxShapeDepth) throw CaseLoadError(field + ": " + shape_depth_error(n.depth));
     budget.used += n.points;
     budget.polygon_vertices += n.polygon_vertices;
     budget.mesh_triangles += n.mesh_triangles;
+    budget.grid_nodes += n.grid_nodes;
   };
   for (int i = 0; i < c.fluids_size(); ++i)
     region(*c.mutable_fluids(i)->mutable_shape(), "fluids[" + std::to_string(i) + "].shape");

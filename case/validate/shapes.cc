@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "case/case_limits.h"
 #include "case/geometry.h"
 #include "case/mesh/triangle_mesh.h"
 
@@ -16,8 +17,8 @@ void Validator::shape(const v1::Shape& s, const std::string& f, bool top) {
   switch (s.kind_case()) {
     case v1::Shape::KIND_NOT_SET:
       error(f,
-            "shape has no kind (box, ball, cylinder, polygon, polar_curve, points, mesh, union, "
-            "intersection, difference or shell)");
+            "shape has no kind (box, ball, cylinder, polygon, polar_curve, points, mesh, "
+            "distance_grid, union, intersection, difference or shell)");
       break;
     case v1::Shape::kBox: {
       point(s.box().lo(), cat(f, "box.lo"));
@@ -81,6 +82,9 @@ void Validator::shape(const v1::Shape& s, const std::string& f, bool top) {
       break;
     case v1::Shape::kMesh:
       mesh(s.mesh(), cat(f, "mesh"));
+      break;
+    case v1::Shape::kDistanceGrid:
+      distance_grid(s.distance_grid(), cat(f, "distance_grid"));
       break;
     case v1::Shape::kUnion:
     case v1::Shape::kIntersection: {
@@ -192,6 +196,100 @@ void Validator::mesh(const v1::TriangleMesh& m, const std::string& f) {
   } else if (box.intersected(domain).empty()) {
     std::snprintf(buf, sizeof buf,
                   "lies outside the domain: the mesh spans [%g, %g] x [%g, %g] x [%g, %g]",
+                  box.lo.x(), box.hi.x(), box.lo.y(), box.hi.y(), box.lo.z(), box.hi.z());
+    error(f, buf);
+  }
+}
+
+// The grid must say where it is and hold one value a node; its inside must be closed within it
+// (outside the grid is outside the shape, so a negative value on its boundary would cut the
+// shape open there) and not empty, and it should overlap the domain.
+void Validator::distance_grid(const v1::DistanceGrid& g, const std::string& f) {
+  const int d = c_.dimension();
+  if (!g.file().empty()) {
+    error(cat(f, "file"),
+          "distance-grid files must be inlined before validation (sphctl and sph-worker do "
+          "this)");
+    return;
+  }
+  if (g.counts_size() != d) {
+    error(cat(f, "counts"), "needs one count per dimension of the case (" + std::to_string(d) +
+                                "); it has " + std::to_string(g.counts_size()));
+    return;
+  }
+  std::int64_t nodes = 1;
+  for (int a = 0; a < d; ++a) {
+    if (g.counts(a) < 2) {
+      error(idx(cat(f, "counts"), a), "must be >= 2 (nodes along an axis)");
+      return;
+    }
+    nodes *= g.counts(a);  // each count is below 2^32 and the values are bounded: no overflow
+    if (nodes > kMaxDistanceGridNodes) {
+      error(cat(f, "counts"), "give more than " + std::to_string(kMaxDistanceGridNodes) +
+                                  " nodes; the limit is " + std::to_string(kMaxDistanceGridNodes) +
+                                  " nodes per case");
+      return;
+    }
+  }
+  if (g.values_size() != nodes) {
+    error(cat(f, "values"), "needs one value per node, " + std::to_string(nodes) +
+                                " by counts; it has " + std::to_string(g.values_size()));
+    return;
+  }
+  if (g.has_scale() && !(std::isfinite(g.scale()) && g.scale() > 0)) {
+    error(cat(f, "scale"), "must be a finite number > 0");
+    return;
+  }
+  if (!point_ok(g.origin())) {
+    point(g.origin(), cat(f, "origin"));
+    return;
+  }
+  if (!(std::isfinite(g.spacing()) && g.spacing() > 0)) {
+    error(cat(f, "spacing"), "must be a finite number > 0");
+    return;
+  }
+  const std::int64_t n[3] = {g.counts(0), g.counts(1), d == 3 ? g.counts(2) : 1};
+  std::int64_t negative = 0, open = 0;
+  for (std::int64_t k = 0; k < n[2]; ++k)
+    for (std::int64_t j = 0; j < n[1]; ++j)
+      for (std::int64_t i = 0; i < n[0]; ++i) {
+        const std::int64_t at = (k * n[1] + j) * n[0] + i;
+        const float v = g.values(static_cast<int>(at));
+        if (!std::isfinite(v)) {
+          error(idx(cat(f, "values"), static_cast<int>(at)), "must be a finite number");
+          return;
+        }
+        if (v < 0) ++negative;
+        const bool boundary = i == 0 || i == n[0] - 1 || j == 0 || j == n[1] - 1 ||
+                              (d == 3 && (k == 0 || k == n[2] - 1));
+        if (boundary && v <= 0) ++open;
+      }
+  if (negative == 0) {
+    error(cat(f, "values"), "are nowhere negative: the shape (where the distance is < 0) is empty");
+    return;
+  }
+  if (open > 0) {
+    error(cat(f, "values"), std::to_string(open) +
+                                " nodes on the grid's boundary are <= 0: the shape must be closed "
+                                "inside the grid (outside it is outside the shape); extend the "
+                                "grid by a node beyond the shape");
+    return;
+  }
+  const double s = g.has_scale() ? g.scale() : 1.0;
+  Aabb box;
+  box.grow(s * to_point(g.origin()));
+  Point3 far = s * to_point(g.origin());
+  for (int a = 0; a < d; ++a) far[a] += s * g.spacing() * static_cast<double>(n[a] - 1);
+  box.grow(far);
+  Aabb domain;
+  domain.grow(to_point(c_.domain().lo()));
+  domain.grow(to_point(c_.domain().hi()));
+  if (d == 2) box.lo.z() = box.hi.z() = domain.lo.z() = domain.hi.z() = 0.0;
+  if (box.intersected(domain).empty()) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "lies outside the domain: the grid spans [%g, %g] x [%g, %g] x [%g, %g] "
+                  "(is it in other units? distance_grid.scale, e.g. 0.001 for millimetres)",
                   box.lo.x(), box.hi.x(), box.lo.y(), box.hi.y(), box.lo.z(), box.hi.z());
     error(f, buf);
   }

@@ -80,6 +80,7 @@ class Validator {
   // shapes.cc, motion.cc
   void shape(const v1::Shape& s, const std::string& f, bool top);
   void mesh(const v1::TriangleMesh& m, const std::string& f);
+  void distance_grid(const v1::DistanceGrid& g, const std::string& f);
   void time_function(const v1::TimeFunction& tf, const std::string& f);
   void motion(const v1::Motion& m, const std::string& f);
   void growth_speed(const v1::Wall& w, const std::string& f, bool shape_ok);  // walls.cc

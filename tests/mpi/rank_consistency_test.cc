@@ -228,6 +228,21 @@ TEST(RankConsistency, StlFunnelWallAndMeshBodyAcrossRanks) {
   expect_same_series(r1, r4, {"bodies/position", "bodies/velocity", "bodies/mass"});
 }
 
+TEST(RankConsistency, DistanceGridWallAcrossRanks) {
+  // A wall from a signed-distance grid read from HDF5 (the boulder of the shipped case), with
+  // the water placed around it: a box minus the same grid, so that it flows off the boulder at
+  // once. Every rank interpolates the same grid and fills the same lattice.
+  auto c = test::load_case("dambreak_sdf_obstacle_2d");
+  auto* water = c.mutable_fluids(0)->mutable_shape();
+  v1::Shape box;
+  box.mutable_box()->mutable_lo()->set_x(2.3);
+  box.mutable_box()->mutable_hi()->set_x(3.7);
+  box.mutable_box()->mutable_hi()->set_y(0.6);
+  *water->mutable_difference()->mutable_base() = box;
+  *water->mutable_difference()->add_subtract() = c.walls(1).shape();
+  check_rank_counts("distance_grid", c, 300);
+}
+
 TEST(RankConsistency, BolusesMeltingAcrossRanks) {
   // Phase transitions regroup bodies from particles on several ranks (the gastric seed scene,
   // coarse, with boluses already near C_t so that they start to dissolve at once).
