@@ -3,7 +3,8 @@
 // with bodies and contact, + phase change (the disk melting from its rim), + a drop of a second
 // fluid in place of the disk, + surface tension between the two fluids, the fluid with density
 // by the continuity equation without and with density diffusion or Riemann dissipation (in the
-// continuity equation, and in it and the momentum equation), the fluid without the transport
+// continuity equation, and in it and the momentum equation), the box filled to 4/5 with and
+// without surface tension on its free surface, the fluid without the transport
 // velocity and with particle shifting instead of it, the box's walls growing into the fluid
 // around the disk, and for each the time per step by unit and the per-particle storage by unit.
 // A unit a scene does not use must show no time and no storage.
@@ -25,11 +26,13 @@ namespace {
 struct Effects {
   bool heat = false, body = false, contact = false, concentration = false, phase = false;
   bool drop = false, tension = false;  // a drop of a second fluid; surface tension on its rim
-  bool plate = false;                  // an elastic plate standing on the floor, clamped there
-  bool continuity = false;             // density by the continuity equation, not summation
-  bool density_diffusion = false;      // with its density diffusion (Fourtakas, delta 0.1)
-  bool riemann = false;                // with Riemann dissipation (CONTINUITY)
-  bool riemann_momentum = false;       // with Riemann dissipation (CONTINUITY_AND_MOMENTUM)
+  // The box filled to 4/5, so the fluid has a free surface; surface tension on it (no gas).
+  bool free_surface = false, free_tension = false;
+  bool plate = false;              // an elastic plate standing on the floor, clamped there
+  bool continuity = false;         // density by the continuity equation, not summation
+  bool density_diffusion = false;  // with its density diffusion (Fourtakas, delta 0.1)
+  bool riemann = false;            // with Riemann dissipation (CONTINUITY)
+  bool riemann_momentum = false;   // with Riemann dissipation (CONTINUITY_AND_MOMENTUM)
   // The contact model with `contact` (docs/contact.md): the spring-dashpot with a damping,
   // with the damping from a restitution, impulses, Glowinski's repulsion.
   enum class Law {
@@ -71,13 +74,17 @@ std::string scene(double dx, const Effects& e) {
 fluids { material: "fluid" shape { difference { base { box { lo { x: 0 y: 0 } hi { x: 0.05 y: 0.05 } } } subtract { ball { center { x: 0.025 y: 0.025 } radius: 0.01 } } } } }
 fluids { material: "drop" shape { ball { center { x: 0.025 y: 0.025 } radius: 0.01 } } })";
   } else {
-    t +=
-        R"(fluids { material: "fluid" shape { box { lo { x: 0 y: 0 } hi { x: 0.05 y: 0.05 } } } })";
+    t += R"(fluids { material: "fluid" shape { box { lo { x: 0 y: 0 } hi { x: 0.05 y: )" +
+         std::string(e.free_surface ? "0.04" : "0.05") + " } } } }";
   }
   // Water against oil, about 0.03-0.05 N/m.
   if (e.tension)
     t += R"(
 surface_tension { pairs { material_a: "fluid" material_b: "drop" sigma: 0.04 } })";
+  // Water against void (docs/surface_tension.md, "Free surfaces").
+  if (e.free_tension)
+    t += R"(
+surface_tension { pairs { material_a: "fluid" sigma: 0.072 } })";
   t += "\nwalls { shape { shell { inner { box { lo { x: 0 y: 0 } hi { x: 0.05 y: 0.05 } } } } } ";
   if (e.heat) t += "temperature { value { constant: 350 } } ";
   if (e.concentration) t += "concentration { value { constant: 1 } } ";
@@ -236,6 +243,9 @@ int main(int argc, char** argv) {
       {"continuity + Riemann dissipation", {.continuity = true, .riemann = true}},
       {"continuity + Riemann dissipation (momentum)",
        {.continuity = true, .riemann_momentum = true}},
+      {"continuity, free surface", {.free_surface = true, .continuity = true}},
+      {"continuity, free surface + surface tension",
+       {.free_surface = true, .free_tension = true, .continuity = true}},
       {"shifting: no transport velocity", {.no_transport = true}},
       {"shifting: on", {.shifting = true}},
       {"+ rigid body + growing walls", {.body = true, .grow = true}},
