@@ -7,7 +7,7 @@ import time
 import pytest
 
 import sphd
-from conftest import Pool, Server, case_path, with_end_time
+from conftest import ROOT, Pool, Server, case_path, with_end_time
 
 
 def sha256(path):
@@ -196,3 +196,46 @@ def test_fetch_refuses_a_file_that_changed(service, tmp_path):
     assert e.value.exit_code == 7
     assert not os.path.exists(tmp_path / "result.xmf")
     assert not os.path.exists(tmp_path / "result.xmf.part")
+
+
+def test_geometry_files_are_inlined_as_sphctl_does(service, tmp_path):
+    """An STL mesh (3D) and a signed-distance grid in HDF5 (2D), each read by load_case and run
+    by the server, which refuses a case with a file left in it."""
+    client = service.client()
+    shipped = os.path.join(ROOT, "cases")
+    sdf = sphd.load_case(os.path.join(shipped, "dambreak_sdf_obstacle_2d.textproto"))
+    grid = sdf.walls[1].shape.distance_grid
+    # [ny][nx] in the file, counts in x, y order; the boulder's centre node is -0.3.
+    assert not grid.file and list(grid.counts) == [131, 91] and len(grid.values) == 131 * 91
+    assert grid.values[45 * 131 + 50] == pytest.approx(-0.3, abs=1e-6)
+    funnel = sphd.load_case(os.path.join(shipped, "funnel_spheres_3d.textproto"))
+    block = funnel.walls[1].shape.mesh
+    # Welded as case/mesh/triangle_mesh.cc welds: a closed surface, V - E + F = 2.
+    v, f = len(block.vertices) // 3, len(block.triangles) // 3
+    print(f"funnel block: {v} vertices, {f} triangles; boulder grid {list(grid.counts)}")
+    assert not block.file and v - 3 * f // 2 + f == 2
+    for case in (sdf, funnel):
+        case.time.max_steps = 3
+        job = client.submit(case)
+        assert sphd.state_name(client.wait(job.id).state) == "SUCCEEDED", case.name
+    # What sphctl says of a missing dataset, a missing file and an STL cut short.
+    bad = tmp_path / "bad.textproto"
+    text = open(os.path.join(shipped, "dambreak_sdf_obstacle_2d.textproto")).read()
+    os.makedirs(tmp_path / "geometry")
+    with open(os.path.join(shipped, "geometry", "boulder_sdf_2d.h5"), "rb") as src:
+        (tmp_path / "geometry" / "boulder_sdf_2d.h5").write_bytes(src.read())
+    bad.write_text(text.replace("spacing: 0.01", 'spacing: 0.01 dataset: "phi"'))
+    with pytest.raises(sphd.InvalidCase, match=r"walls\[1\].shape.distance_grid.file: .* has no "
+                                                 "dataset 'phi'"):
+        sphd.load_case(str(bad))
+    bad.write_text(text.replace("boulder_sdf_2d.h5", "missing.h5"))
+    with pytest.raises(sphd.InvalidCase, match="no such file"):
+        sphd.load_case(str(bad))
+    with open(os.path.join(shipped, "geometry", "funnel_block.stl"), "rb") as src:
+        (tmp_path / "geometry" / "cut.stl").write_bytes(src.read()[:-30])
+    bad.write_text(open(os.path.join(shipped, "funnel_spheres_3d.textproto")).read().replace(
+        "funnel_block.stl", "cut.stl"))
+    # The fluid, a tank minus the funnel, names the file first.
+    with pytest.raises(sphd.InvalidCase, match=r"fluids\[0\].shape.difference.subtract\[0\]"
+                                                 r".mesh.file: STL file .*cut.stl': is neither"):
+        sphd.load_case(str(bad))
