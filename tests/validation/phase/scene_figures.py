@@ -22,12 +22,14 @@ SCENES = [  # folder, scalar, bounds of the scalar (initial and boundary values)
     ("powder_2d_coarse", "temperature", (0.0, 100.0), [0, 0.1, 0.25, 0.3, 0.4, 0.5, 0.55, 0.6, 0.7, 0.75]),
     ("powder_3d_coarse", "temperature", (500.0, 1800.0), [0, 2.5e-5, 5e-5, 1e-4, 1.5e-4, 1.6e-4, 1.75e-4]),
     ("powder_slice_2d", "temperature", (500.0, 1800.0), [0, 2.5e-5, 5e-5, 7.5e-5, 1e-4, 1.5e-4, 1.6e-4, 1.75e-4]),
+    ("powder_slice_2d_st", "temperature", (500.0, 1800.0), [0, 2.5e-5, 5e-5, 7.5e-5, 1e-4, 1.5e-4, 1.6e-4, 1.75e-4]),
+    ("powder_3d_coarse_st", "temperature", (500.0, 1800.0), [0, 2.5e-5, 5e-5, 1e-4, 1.5e-4, 1.6e-4, 1.75e-4]),
     ("powder_2d", "temperature", (0.0, 100.0), [0, 0.1, 0.25, 0.3, 0.4, 0.5, 0.55, 0.6, 0.7, 0.75]),
     ("powder_3d", "temperature", (500.0, 1800.0), [0, 2.5e-5, 5e-5, 1e-4, 1.5e-4, 1.6e-4, 1.75e-4]),
 ]
-STRAY = {"powder_3d_coarse", "powder_slice_2d", "powder_3d"}  # scenes with the metal-outside-grains column
+STRAY = {"powder_3d_coarse", "powder_slice_2d", "powder_3d", "powder_slice_2d_st", "powder_3d_coarse_st"}  # scenes with the metal-outside-grains column
 STRAY_MARGIN = 2e-6
-MIXING = {"powder_2d_coarse", "powder_2d", "powder_3d_coarse", "powder_slice_2d", "powder_3d"}  # melt-gas interface column
+MIXING = {"powder_2d_coarse", "powder_2d", "powder_3d_coarse", "powder_slice_2d", "powder_3d", "powder_slice_2d_st", "powder_3d_coarse_st"}  # melt-gas interface column
 
 
 def grains_of(case_text):
