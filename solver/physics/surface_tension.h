@@ -56,6 +56,8 @@
 // from every wall and rigid neighbour: the colour function counts fluid neighbours only, so
 // next to a solid the unturned normal points into it and the force drives the fluid into the
 // solid (a melted particle at the bottom of a grain on a hot floor was pushed into the grain).
+// At a free surface the normal is left as it is and a contact-line force pulls the line to the
+// angle instead (contact_line_force below; Huber et al. 2016).
 //
 // Deterministic and rank independent: the sums run over the neighbour list in its canonical
 // order; the normals of ghosts come from their owners.
@@ -124,6 +126,7 @@ class SurfaceTension final : public Unit<D> {
   void curvature_and_force(StepContext<D>& ctx);
   void free_surface_curvature(StepContext<D>& ctx, std::size_t i);
   void smoothed_curvature_and_force(StepContext<D>& ctx);
+  void contact_line_force(ParticleStore<D>& s, std::size_t i, const Vec<D>& mean_normal) const;
   template <class K>
   void tabulate_depth(const K& kernel);
   // The depth below a planar interface at which the own phase fills the share `colour` of
@@ -148,6 +151,10 @@ class SurfaceTension final : public Unit<D> {
   // With a free surface: the curvature before its average over the neighbours (ghosts too).
   Column<double>* raw_curvature_ = nullptr;
   Column<double>* gradient_norm_ = nullptr;  // |G_j| (ghosts too), the average's weight
+  // With a free surface, at its particles next to a solid: the solid's colour gradient (its
+  // unit normal times the contact-line delta; 0 elsewhere) and cos theta_eq, owned.
+  Column<Vec<D>>* solid_gradient_ = nullptr;
+  Column<double>* cos_equilibrium_ = nullptr;
 };
 
 template <int D>
@@ -196,6 +203,9 @@ SurfaceTension<D>::SurfaceTension(const v1::Case& c, const std::vector<MaterialP
   if (any_free_) {
     raw_curvature_ = &particles.template add<double>("surface_tension_raw_curvature", kName, false);
     gradient_norm_ = &particles.template add<double>("surface_tension_gradient_norm", kName, false);
+    solid_gradient_ =
+        &particles.template add<Vec<D>>("surface_tension_solid_gradient", kName, false);
+    cos_equilibrium_ = &particles.template add<double>("surface_tension_cos_eq", kName, false);
   }
   const auto angle = [&](double degrees, const std::string& liquid) {
     ContactAngle ca;
@@ -303,7 +313,10 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
     normal_[i] = Vec<D>::Zero();
     gradient_[i] = Vec<D>::Zero();
     curvature_[i] = 0;
-    if (raw_curvature_ != nullptr) (*raw_curvature_)[i] = 0;
+    if (raw_curvature_ != nullptr) {
+      (*raw_curvature_)[i] = 0;
+      (*solid_gradient_)[i] = Vec<D>::Zero();
+    }
     depth_[i] = 0;
     if (kind[i] != Kind::kFluid || !active_[mat[i]]) continue;
     const std::uint16_t mi = mat[i];
@@ -385,6 +398,15 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
     const double gn = G.norm();
     if (!(g.norm() > min_gradient_) || !(gn > 0) || own_support < kMinOwnSupport * filled) continue;
     Vec<D> n = G / gn;
+    if (free && angle != nullptr) {
+      // At a free surface the normal keeps its own direction next to a solid; the contact-line
+      // force (contact_line_force) pulls the line to the angle instead.
+      if (!wall_normal.isZero()) {
+        (*solid_gradient_)[i] = wall_normal;
+        (*cos_equilibrium_)[i] = mi == angle->through ? angle->cos_own : angle->cos_other;
+      }
+      angle = nullptr;
+    }
     if (angle != nullptr) {
       const double wn = wall_normal.norm();
       if (wn > 0) {
@@ -532,7 +554,44 @@ void SurfaceTension<D>::smoothed_curvature_and_force(StepContext<D>& ctx) {
     const double kappa = sum / weight;
     curvature_[i] = kappa;
     s.a[i] += (kappa / rho[i]) * gradient_[i];  // forces accumulate (solver/seam/unit.h)
+    if ((*solid_gradient_)[i].isZero()) continue;
+    // The apparent angle from the mean normal over i and its neighbours with one, weighted as
+    // the curvature (|G_j| V_j W_ij).
+    Vec<D> mean = self * normal[i].normalized();
+    g_w = pv.w;
+    for (const std::uint32_t* jp = nl.begin(i); jp != nl.fluid_end(i); ++jp, ++g_w) {
+      const std::uint32_t j = *jp;
+      if (normal[j].isZero()) continue;
+      mean += (gnorm[j] * m[j] / rho[j] * *g_w) * normal[j].normalized();
+    }
+    contact_line_force(s, i, mean);
   }
+}
+
+// The contact-line force at a free surface (docs/surface_tension.md, "Contact angles at a free
+// surface"): Huber et al. 2016 (J. Comput. Phys. 310, 459), eq. (40) with the static angle,
+//   f = sigma (cos theta_eq - cos theta) nu delta_cl,
+// nu the unit vector along the solid, normal to the contact line, away from the liquid, theta
+// the apparent angle through the liquid, from the mean normal n: cos theta = -n . n_w (n_w
+// out of the solid). The line delta is the product of the two surfaces' deltas: |G| / sigma
+// (the colour jump of the free surface, all on the liquid's side) and 2 |grad c_solid| (the
+// solid's colour gradient, half of whose jump lies on the fluid's side); two planes crossing
+// at theta carry 1 / sin theta of that product per unit line, so times sin theta the force
+// integrates to sigma (cos theta_eq - cos theta) per unit length of contact line: Young's
+// balance sigma_sg - sigma_sl = sigma cos theta_eq against the free surface's pull.
+template <int D>
+void SurfaceTension<D>::contact_line_force(ParticleStore<D>& s, std::size_t i,
+                                           const Vec<D>& mean_normal) const {
+  const Vec<D> solid = (*solid_gradient_)[i];
+  const double ws = solid.norm(), mn = mean_normal.norm();
+  if (!(mn > 0)) return;
+  const Vec<D> nw = solid / ws, n = mean_normal / mn;
+  Vec<D> t = n - n.dot(nw) * nw;  // along the solid, into the liquid
+  const double tn = t.norm();
+  if (!(tn > 0)) return;
+  const double cos_app = -n.dot(nw), sin_app = tn;
+  const double f = ((*cos_equilibrium_)[i] - cos_app) * sin_app * 2 * ws * (*gradient_norm_)[i];
+  s.a[i] -= (f / (tn * s.rho[i])) * t;
 }
 
 template <int D>

@@ -9,8 +9,11 @@
 // density-weighted colour of A10 at an infinite density ratio, the heavy side taking the whole
 // jump), so
 //   grad c_i = 1/V_i sum_{j present} (V_i^2 + V_j^2) grad W_ij,
-// walls and rigid particles counted as present (the solid is not void; the contact angle or
-// neutral wetting turns the normal there as between two fluids). It points into the phase.
+// walls and rigid particles counted as present (the solid is not void). It points into the
+// phase. Next to a solid the normal is not turned to the contact angle as between two fluids:
+// the contact-line force of SurfaceTension<D>::contact_line_force pulls the line to it
+// (Huber et al. 2016): with turned normals the liquid alone takes the force of the bend that a
+// second fluid shares, and the drop does not settle at the angle (docs/surface_tension.md).
 // This is the same sum, with the same weights, as the pressure term of the momentum equation
 // (Adami 2012, solver/physics/fluid_forces.h) at a uniform pressure p:
 //   -1/m_i sum_j (V_i^2 + V_j^2) p grad W_ij = -(p / rho_i) grad c_i,

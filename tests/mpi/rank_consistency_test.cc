@@ -855,6 +855,21 @@ TEST(RankConsistency, SurfaceTensionFreeSurfaceAcrossRanks) {
   check_rank_counts("surface_tension_free_square", square, 300);
 }
 
+// The contact-line force at a free surface (surface_tension.h, contact_line_force): the mean
+// normal over the neighbours, read from the ghosts, must not depend on the rank count or on a
+// resume: a free half drop on a floor with a 60-degree angle.
+TEST(RankConsistency, SurfaceTensionFreeSurfaceContactAngleAcrossRanks) {
+  auto c = test::load_case("free_drop_contact_angle_2d");
+  c.set_dx(0.1);
+  check_rank_counts("surface_tension_free_contact_angle", c, 300);
+}
+
+TEST(RankConsistency, SurfaceTensionFreeSurfaceContactAngleResumes) {
+  auto c = test::load_case("free_drop_contact_angle_2d");
+  c.set_dx(0.1);
+  check_resume("surface_tension_free_contact_angle", c, 300, 150);
+}
+
 TEST(RankConsistency, SurfaceTensionFreeSurfaceResumesFromCheckpointOnAnyRankCount) {
   auto c = test::load_case("free_drop_oscillation_2d");
   c.set_dx(0.1);

@@ -727,6 +727,32 @@ TEST(CaseValidation, SurfaceTensionContactAngles) {
                 "duplicate contact angle for wall 'floor' (already surface_tension.walls[1])"))
       << dump(errs);
   EXPECT_TRUE(has_error(errs, "surface_tension.walls[3].wall", "is required")) << dump(errs);
+  // At a free surface (a pair without material_b): walls within the validated 60 to 105
+  // degrees, no angles at rigid bodies.
+  const std::string free = "fluid_model { density: CONTINUITY } ";
+  errs = errors_of(m + free + R"(surface_tension { pairs { material_a: "water" sigma: 0.072 }
+    walls { wall: "floor" contact_angle: 60 material: "water" } })");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  errs = errors_of(m + free + R"(surface_tension { pairs { material_a: "water" sigma: 0.072 }
+    walls { wall: "floor" contact_angle: 105 material: "water" } })");
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  for (const char* angle : {"120", "45"}) {
+    errs = errors_of(m + free +
+                     "surface_tension { pairs { material_a: \"water\" sigma: 0.072 } walls { "
+                     "wall: \"floor\" contact_angle: " +
+                     angle + " material: \"water\" } }");
+    EXPECT_TRUE(has_error(errs, "surface_tension.walls[0].contact_angle",
+                          std::string("material 'water' has a free surface: its contact angle "
+                                      "must be in [60, 105] degrees (the range validated at a "
+                                      "free surface); got ") +
+                              angle))
+        << dump(errs);
+  }
+  errs = errors_of(m + free + R"(surface_tension { pairs { material_a: "water" sigma: 0.072 }
+    bodies { solid_material: "steel" contact_angle: 60 material: "water" } })");
+  EXPECT_TRUE(has_error(errs, "surface_tension.bodies[0].material",
+                        "contact angles at rigid bodies are not supported at a free surface"))
+      << dump(errs);
 }
 
 // Contact angles at rigid bodies, by their SOLID material (surface_tension.bodies).
