@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Magnus effect benchmark (Reder et al. 2021 sec. 3.2, Table 3; Mittal & Kumar 2003): runs
+# cases/magnus_cylinder_2d.textproto at gamma = omega D / (2 U) = 0, 1, 2, 3, then writes
+# tests/validation/reports/magnus.md and its plot (magnus_report.py).
+#   tests/validation/magnus/run_magnus.sh [BUILD_DIR] [OUT_DIR]
+# SPHD_MAGNUS_RES="10 20" picks the resolutions D/dx (default 10; 20 takes about 8 times as
+# long), SPHD_MAGNUS_GAMMAS="0 1" the rates (default 0 1 2 3), SPHD_MAGNUS_END the end time
+# (default 40 D/U). Each run is one rank (`nice -n 5`); a finished run is kept (delete its
+# folder to redo it). The sound speed grows with gamma (10, 10, 15, 20) so that the Mach
+# number near the spinning wall stays about 0.2; gamma = 0 is spun for t in [2, 3] at
+# omega = 1 to break the symmetry of the lattice so that shedding starts early.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)
+build=${1:-$root/build}
+out=${2:-$root/out/validation-magnus}
+mkdir -p "$out"
+end=${SPHD_MAGNUS_END:-40}
+for res in ${SPHD_MAGNUS_RES:-10}; do
+  for g in ${SPHD_MAGNUS_GAMMAS:-0 1 2 3}; do
+    name=g${g}_r${res}
+    if [ -f "$out/$name/wall_seconds" ]; then echo "== $name: kept from an earlier run"; continue; fi
+    case $g in 0 | 1) c=10 ;; 2) c=15 ;; *) c=20 ;; esac
+    if [ "$g" = 0 ]; then
+      omega="angular_velocity { constant: 1 start_time: 2 end_time: 3 }"
+    else
+      omega="angular_velocity { constant: -$((2 * g)) }"
+    fi
+    dx=$(/usr/bin/python3 -c "print(1 / $res)")
+    mkdir -p "$out/$name"
+    sed -E "s/^dx: 0\.1$/dx: $dx/; s/sound_speed: 10 \}  # MAGNUS_SOUND_SPEED/sound_speed: $c }/;
+            s/angular_velocity \{ constant: -2 \}  # MAGNUS_OMEGA/$omega/;
+            s/end_time: 40 \}  # MAGNUS_END_TIME/end_time: $end }/" \
+      "$root/cases/magnus_cylinder_2d.textproto" >"$out/$name.textproto"
+    for k in MAGNUS_SOUND_SPEED MAGNUS_OMEGA MAGNUS_END_TIME; do
+      if grep -q "$k" "$out/$name.textproto"; then echo "$k not replaced" >&2; exit 1; fi
+    done
+    echo "== $name: gamma $g, D/dx $res, c $c ($(date +%H:%M:%S))"
+    t0=$SECONDS
+    nice -n 5 "$build/worker/sph-worker" --case "$out/$name.textproto" --out "$out/$name" --quiet 2>&1 |
+      grep -E "^(completed|unstable|error)" || true
+    echo "$((SECONDS - t0))" >"$out/$name/wall_seconds"
+  done
+done
+/usr/bin/python3 "$root/tests/validation/magnus/magnus_report.py" "$out" "$root/tests/validation/reports"
