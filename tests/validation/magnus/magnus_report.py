@@ -50,6 +50,8 @@ def analyse(path):
     smooth = np.convolve(np.convolve(cl, kern, mode="same"), kern, mode="same")
     late = t >= T0
     r = {"t": t, "cd": cd, "cl": cl, "smooth": smooth, "t_end": t[-1]}
+    early = (t >= 5) & (t <= 10)
+    r["cl_early"], r["cd_early"] = float(np.mean(cl[early])), float(np.mean(cd[early]))
     if np.count_nonzero(late) < 10:
         return r
     idx = np.nonzero(late)[0]
@@ -79,6 +81,23 @@ def analyse(path):
     return r
 
 
+def verdict(g, r):
+    """Digest sec. 4 item 10 for one run: 'met' or the quantities that miss."""
+    st_ref, cl_ref, cd_ref = MK[g]
+    miss = []
+    if g in (0, 1) and (not r["shedding"] or abs(r["St"] / st_ref - 1) > 0.03):
+        miss.append("St")
+    if g == 0 and abs(r["cd_mean"] / cd_ref - 1) > 0.05:
+        miss.append("c_d")
+    if g >= 1 and abs(r["cl_mean"] / cl_ref - 1) > (0.07 if g == 2 else 0.05):
+        miss.append("c_l")
+    if g == 1 and not 1.04 <= r["cd_mean"] <= 1.36:
+        miss.append("c_d")
+    if g == 3 and r["shedding"]:
+        miss.append("steady")
+    return "met" if not miss else "missed: " + ", ".join(miss)
+
+
 def rel(v, ref):
     return "%+.1f%%" % (100 * (v / ref - 1)) if ref else "-"
 
@@ -87,7 +106,7 @@ def main():
     out, report = sys.argv[1], sys.argv[2]
     runs = []
     for d in sorted(glob.glob(os.path.join(out, "g*_r*"))):
-        m = re.match(r"g(\d+)_r(\d+)$", os.path.basename(d))
+        m = re.match(r"g(\d+)_r(\d+)(_t\d+)?$", os.path.basename(d))
         # A run still going (no wall_seconds yet) is left out.
         if not m or not os.path.isfile(os.path.join(d, "wall_seconds")):
             continue
@@ -114,27 +133,58 @@ def main():
         "References: Mittal & Kumar 2003 (M&K) and Reder et al. Table 3; tolerances of the",
         "digest's section 4 item 10. Wall times on one core of the shared 2-core machine.",
         "",
-        "| D/dx | gamma | t_end | St | vs M&K | mean c_l | vs M&K | mean c_d | vs M&K | lift amplitude | shedding | periods | tolerance | wall |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "| D/dx | gamma | t_end | St | vs M&K | mean c_l | vs M&K | mean c_d | vs M&K | lift amplitude (smoothed) | shedding | periods | tolerance | verdict | wall |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for res, g, wall, r in runs:
         if "cl_mean" not in r:
-            lines.append("| %d | %d | %.1f | (too short) | | | | | | | | | | %.0f s |" % (res, g, r["t_end"], wall))
             continue
         st_ref, cl_ref, cd_ref = MK[g]
         st = "%.4f" % r["St"] if "St" in r else "-"
         lines.append(
-            "| %d | %d | %.0f | %s | %s | %.3f | %s | %.3f | %s | %.3f | %s | %s | %s | %.0f s |"
+            "| %d | %d | %.0f | %s | %s | %.3f | %s | %.3f | %s | %.3f | %s | %s | %s | %s | %.0f s |"
             % (res, g, r["t_end"], st, rel(r["St"], st_ref) if "St" in r and st_ref else "-",
                r["cl_mean"], rel(r["cl_mean"], cl_ref) if cl_ref else "(0)", r["cd_mean"],
                rel(r["cd_mean"], cd_ref), r["amplitude"], "yes" if r["shedding"] else "no",
-               r.get("periods", "-"), TOL[g], wall))
+               r.get("periods", "-"), TOL[g], verdict(g, r), wall))
     lines += [
         "",
         "References (Table 3): gamma = 0: St 0.1934, c_d 1.316 (Reder 0.1948, 1.3298); gamma = 1:",
         "St 0.1921, c_l 2.532, c_d 1.088 (Reder 0.1922, 2.5486, 1.2952); gamma = 2: c_l 5.358,",
         "c_d 0.298 (Reder St 0.1758, 5.6254, 0.7009); gamma = 3: c_l 10.316, c_d 0.043, steady",
         "(Reder 10.07, 0.2285).",
+        "",
+        "Resolution: gamma = 1, means over 5 <= t <= 10 D/U (the start of shedding; every run",
+        "reaches it, the short ones end at t = 10). D/dx = 5 has walls and buffers 0.6 thick",
+        "(3 dx); it is the run of the CI test `Magnus.RotatingCylinderLiftsTowardsItsFasterSide`.",
+        "",
+        "| D/dx | t_end | mean c_l, 5 <= t <= 10 | vs M&K 2.532 | mean c_d | wall |",
+        "|---|---|---|---|---|---|",
+    ]
+    for res, g, wall, r in sorted(runs, key=lambda x: (x[0], x[3]["t_end"])):
+        if g == 1:
+            lines.append("| %d | %.0f | %.3f | %s | %.3f | %.0f s |" % (
+                res, r["t_end"], r["cl_early"], rel(r["cl_early"], 2.532), r["cd_early"], wall))
+    lines += [
+        "",
+        "What this says. The Strouhal number at gamma = 1 is the one figure near its reference.",
+        "The Magnus lift is 40-60% short at every resolution run here, and grows only slowly",
+        "with D/dx (table above): the lift comes from the circulation the spinning wall drags",
+        "into the flow through its boundary layer, about D / sqrt(Re) = 0.07 D thick at Re 200,",
+        "which is one or two particle spacings at D/dx = 10 to 20 and well inside the kernel's",
+        "support (3 dx); the dummy-particle no-slip condition (Adami 2012 eq. 23) then lets the",
+        "fluid next to the wall slip (at gamma = 1, D/dx = 10, t = 40, the fluid within one",
+        "spacing below the cylinder moves at +0.03 U where the wall moves at -1 U). The same",
+        "weak boundary layer shows at gamma = 0 as a low Strouhal number and a weak, irregular",
+        "shedding, as at a lower effective Reynolds number; the drag is high there by about what",
+        "the 12.5% blockage of the channel adds. At gamma = 2 and 3 the coarse wall also cannot",
+        "hold the closed streamline region that suppresses shedding (M&K: gamma_c = 1.91), so",
+        "the wake still sheds and the drag stays high. The references are body-fitted FEM",
+        "(Mittal & Kumar) and a phase-field method on a fine grid (Reder); meeting the digest's",
+        "tolerances needs resolutions this 2-core machine does not afford (D/dx of 40 or more",
+        "and t U / D of about 150: the digest's estimate, 1.2e11 particle steps per rate).",
+        "Without the transport velocity (continuity density) the lift is lower still (0.39 at",
+        "D/dx = 5 against 1.01 with it, 5 <= t <= 10).",
         "",
         "![lift and drag](magnus.png)",
         "",
@@ -143,6 +193,8 @@ def main():
     open(os.path.join(report, "magnus.md"), "w").write("\n".join(lines))
     fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
     for res, g, wall, r in runs:
+        if r["t_end"] < T0:
+            continue
         ls = "-" if res == max(x[0] for x in runs) else ":"
         span = max(1, int(round(SMOOTH / np.median(np.diff(r["t"])))))
         kern = np.ones(span) / span
