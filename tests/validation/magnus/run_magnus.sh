@@ -43,8 +43,20 @@ for res in ${SPHD_MAGNUS_RES:-10}; do
     echo "== $name: gamma $g, D/dx $res, c $c ($(date +%H:%M:%S))"
     t0=$SECONDS
     nice -n 5 "$build/worker/sph-worker" --case "$out/$name.textproto" --out "$out/$name" --quiet 2>&1 |
-      grep -E "^(completed|unstable|error)" || true
+      grep -E "^(completed|unstable|error)" | tee "$out/$name/outcome" || true
+    # The report marks a run that stopped early.
+    if grep -q "^unstable" "$out/$name/outcome"; then mv "$out/$name/outcome" "$out/$name/unstable"; fi
     echo "$((SECONDS - t0))" >"$out/$name/wall_seconds"
   done
+done
+# The torque check: circular Couette flow about a turning cylinder, R1/dx = 10 and 20 (5 s and
+# 35 s).
+for r in 10 20; do
+  if [ ! -f "$out/couette_r$r/result.h5" ]; then
+    sed "s/^dx: 0.05$/dx: $(/usr/bin/python3 -c "print(0.5 / $r)")/" \
+      "$root/tests/validation/magnus/rotating_couette_2d.textproto" >"$out/couette_r$r.textproto"
+    nice -n 5 "$build/worker/sph-worker" --case "$out/couette_r$r.textproto" --out "$out/couette_r$r" \
+      --quiet 2>&1 | grep -E "^(completed|unstable|error)" || true
+  fi
 done
 /usr/bin/python3 "$root/tests/validation/magnus/magnus_report.py" "$out" "$root/tests/validation/reports"
