@@ -1,13 +1,14 @@
 // The Magnus effect benchmark of Reder et al. 2021 sec. 3.2 at CI size: the cylinder of
 // cases/magnus_cylinder_2d.textproto (motion_type PRESCRIBED: held in place, turned clockwise
 // at gamma = omega D / (2 U) = 1) in a stream at Re 200, at D/dx = 5 (dx = 0.2) to t = 10 D/U.
-// Mittal & Kumar 2003 give a mean lift c_l = 2.532 at gamma = 1 (Reder Table 3). This
-// resolution puts the boundary layer (about 0.1 D thick) inside one particle spacing and
-// recovers 40% of that lift (1.01 over 5 <= t <= 10; 42% at D/dx = 10 over the developed
-// flow, tests/validation/reports/magnus.md), so the test guards the sign and the order of
-// magnitude, c_l / 2.532 in [0.25, 1.05], and that the fluid's torque opposes the spin.
+// Mittal & Kumar 2003 give a mean lift c_l = 2.532 at gamma = 1 (Reder Table 3). The lift
+// measured on a turning body here is well short of it at every resolution tried (the force on
+// a turning body is in doubt: tests/validation/reports/magnus.md), so the test guards the sign
+// and the order of magnitude, c_l / 2.532 in [0.25, 1.05], and that the fluid's torque opposes
+// the spin.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
