@@ -273,6 +273,17 @@ def main():
             "(the fixed ring from +2.2% to +8.6%) and the rigid-rotation torques from -0.161 / 0.704",
             "to -0.145 / 0.660. So that slip is a small part; what makes the torque on a turning",
             "body a third too small, and non-zero in rigid rotation, is not found yet.",
+            "With that mirror the dummies of a rigidly turning solid carry the rigid velocity field",
+            "exactly (a Shepard average of a linear field is its value at r~), and the torques still do",
+            "not vanish. The next suspect is the viscous term itself: Morris' form pushes a pair along",
+            "v_i - v_j, not along r_ij, so the pair's two forces are equal and opposite but not central",
+            "and exert a net torque (r_i - r_j) x F_ij. In the bulk the sums cancel; a body particle sees",
+            "fluid on one side only, and in rigid rotation v_i - v_j = omega x r_ij gives it a tangential",
+            "force omega x sum_i r_ij w_ij, a torque with no stress behind it. Without the transport",
+            "velocity the Couette torque is -23.3% and the ring's +17.1% (with it -32.3%, +8.6%, both",
+            "with the mirror): the two torques should be equal, so the fluid's angular momentum is not",
+            "kept at the walls. An angular-momentum-conserving viscous term for fluid-solid pairs is the",
+            "candidate fix (not tried).",
         ]
     lines += [
         "",
