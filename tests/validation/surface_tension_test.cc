@@ -24,6 +24,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -350,6 +351,32 @@ struct CapAngles {
   double radius = 0, centre_y = 0, height = 0, half_base = 0;
 };
 
+// Algebraic circle fit (Kasa): x^2 + y^2 + D x + E y + F = 0 in least squares; {D, E, F}.
+std::array<double, 3> kasa_circle_fit(const std::vector<std::pair<double, double>>& points) {
+  double A[3][3] = {}, b[3] = {};
+  for (const auto& [x, y] : points) {
+    const double row[3] = {x, y, 1.0}, rhs = -(x * x + y * y);
+    for (int i = 0; i < 3; ++i) {
+      b[i] += row[i] * rhs;
+      for (int j = 0; j < 3; ++j) A[i][j] += row[i] * row[j];
+    }
+  }
+  auto det3 = [](const double m[3][3]) {
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  };
+  std::array<double, 3> sol{};
+  const double d = det3(A);
+  for (int c = 0; c < 3; ++c) {
+    double M[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) M[i][j] = j == c ? b[i] : A[i][j];
+    sol[c] = det3(M) / d;
+  }
+  return sol;
+}
+
 // The equilibrium angle of the drop (material 0) on the floor (y = 0).
 CapAngles cap_angles(const DropFields& f, double dx) {
   // Boundary particles: drop particles with a particle of the other fluid within 1.5 dx, more
@@ -369,28 +396,7 @@ CapAngles cap_angles(const DropFields& f, double dx) {
       on_edge = f.material[j] == 1 && std::hypot(f.x[i] - f.x[j], f.y[i] - f.y[j]) < 1.5 * dx;
     if (on_edge) edge.push_back({f.x[i], f.y[i]});
   }
-  // Algebraic circle fit (Kasa): x^2 + y^2 + D x + E y + F = 0 in least squares.
-  double A[3][3] = {}, b[3] = {};
-  for (const auto& [x, y] : edge) {
-    const double row[3] = {x, y, 1.0}, rhs = -(x * x + y * y);
-    for (int i = 0; i < 3; ++i) {
-      b[i] += row[i] * rhs;
-      for (int j = 0; j < 3; ++j) A[i][j] += row[i] * row[j];
-    }
-  }
-  auto det3 = [](const double m[3][3]) {
-    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-  };
-  double sol[3];
-  const double d = det3(A);
-  for (int c = 0; c < 3; ++c) {
-    double M[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) M[i][j] = j == c ? b[i] : A[i][j];
-    sol[c] = det3(M) / d;
-  }
+  const std::array<double, 3> sol = kasa_circle_fit(edge);
   CapAngles a;
   const double cx = -sol[0] / 2, cy = -sol[1] / 2;
   // The boundary particles sit about half a spacing inside the interface.
@@ -981,29 +987,10 @@ FreeCap free_cap(const DropFields& f, double dx) {
       which[k] = i;
     }
   }
-  double A[3][3] = {}, b[3] = {};
-  for (int k = 0; k < kSectors; ++k) {
-    if (far[k] < 0 || f.y[which[k]] < 3 * dx) continue;
-    const double x = f.x[which[k]], y = f.y[which[k]];
-    const double row[3] = {x, y, 1.0}, rhs = -(x * x + y * y);
-    for (int i = 0; i < 3; ++i) {
-      b[i] += row[i] * rhs;
-      for (int j = 0; j < 3; ++j) A[i][j] += row[i] * row[j];
-    }
-  }
-  auto det3 = [](const double m[3][3]) {
-    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-  };
-  double sol[3];
-  const double d = det3(A);
-  for (int c = 0; c < 3; ++c) {
-    double M[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) M[i][j] = j == c ? b[i] : A[i][j];
-    sol[c] = det3(M) / d;
-  }
+  std::vector<std::pair<double, double>> outer;
+  for (int k = 0; k < kSectors; ++k)
+    if (far[k] >= 0 && f.y[which[k]] >= 3 * dx) outer.push_back({f.x[which[k]], f.y[which[k]]});
+  const std::array<double, 3> sol = kasa_circle_fit(outer);
   FreeCap cap;
   cap.centre_x = -sol[0] / 2;
   const double cy = -sol[1] / 2;
