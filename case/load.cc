@@ -154,10 +154,11 @@ void inline_shape(v1::Shape& s, const std::string& base, const std::string& fiel
       auto* grid = s.mutable_distance_grid();
       if (!grid->file().empty()) {
         const std::filesystem::path p = beside_case(base, grid->file());
-        const auto left = static_cast<std::size_t>(
-            std::max<std::int64_t>(0, kMaxDistanceGridNodes - budget.grid_nodes));
         // A case of another dimension is refused by validation; read as 3D meanwhile.
         const int dim = budget.dimension == 2 ? 2 : 3;
+        budget.grid_nodes -= grid->values_size();  // the file's values replace these
+        const auto left = static_cast<std::size_t>(
+            std::max<std::int64_t>(0, kMaxDistanceGridNodes - budget.grid_nodes));
         try {
           read_distance_grid(p.string(), dim, left, *grid);
         } catch (const std::runtime_error& e) {

@@ -80,7 +80,7 @@ void read_distance_grid(const std::string& path, int dim, std::size_t max_nodes,
                                std::to_string(dims[a]) +
                                " nodes along an axis; at least 2 are needed");
     // Counted in a way that cannot overflow: stop as soon as the limit is passed.
-    if (dims[a] > max_nodes / nodes + 1 || nodes * dims[a] > max_nodes)
+    if (dims[a] > max_nodes / nodes)
       throw std::runtime_error(where + ": dataset '" + dataset +
                                "' has more nodes than the case may hold; the limit is " +
                                std::to_string(max_nodes) + " grid nodes per case");

@@ -221,6 +221,9 @@ def test_geometry_files_are_inlined_as_sphctl_does(service, tmp_path):
     # What sphctl says of a missing dataset, a missing file and an STL cut short.
     bad = tmp_path / "bad.textproto"
     text = open(os.path.join(shipped, "dambreak_sdf_obstacle_2d.textproto")).read()
+    # Parsed without load_case, the grid's file is still named: the server refuses it.
+    with pytest.raises(sphd.InvalidCase, match="must be inlined"):
+        client.submit(sphd.parse_case(text))
     os.makedirs(tmp_path / "geometry")
     with open(os.path.join(shipped, "geometry", "boulder_sdf_2d.h5"), "rb") as src:
         (tmp_path / "geometry" / "boulder_sdf_2d.h5").write_bytes(src.read())

@@ -16,6 +16,21 @@ inline v1::Case load_case(const std::string& name) {
   return load_case_file(source_dir() + "/cases/" + name + ".textproto");
 }
 
+// The text of cases/NAME.textproto, for tests that edit a shipped case before parsing it.
+inline std::string case_text(const std::string& name) {
+  return read_text_file(source_dir() + "/cases/" + name + ".textproto");
+}
+
+// Replaces every `from` in `s` by `to`; returns how many (0: the text no longer holds it).
+inline int replace_all(std::string& s, const std::string& from, const std::string& to) {
+  int n = 0;
+  for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) {
+    s.replace(at, from.size(), to);
+    ++n;
+  }
+  return n;
+}
+
 // Where output_dir(name) puts a run's files (without clearing it).
 inline std::string output_dir_path(const std::string& name) {
   return std::string(SPHD_BINARY_DIR) + "/test-output/" + name;

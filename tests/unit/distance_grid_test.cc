@@ -279,21 +279,22 @@ TEST(DistanceGrid, BadInlineGridFieldsAreNamed) {
   e = errors_for(2,
                  "counts: [3, 3] origin { x: -0.02 y: -0.02 } spacing: 0.02 values: [1, 1, 1, "
                  "1, 1, 1, 1, 1, 1]");
-  EXPECT_NE(e[f + ".values"].find("nowhere negative"), std::string::npos);
+  EXPECT_NE(e[f + ".values"].find("nowhere negative"), std::string::npos) << e[f + ".values"];
   e = errors_for(2,
                  "counts: [3, 3] origin { x: -0.02 y: -0.02 } spacing: 0.02 values: [1, 1, 1, "
                  "-1, -1, 1, 1, 1, 1]");
-  EXPECT_NE(e[f + ".values"].find("1 nodes on the grid's boundary are <= 0"), std::string::npos);
+  EXPECT_NE(e[f + ".values"].find("1 nodes on the grid's boundary are <= 0"), std::string::npos)
+      << e[f + ".values"];
   e = errors_for(2, "counts: [3, 3] spacing: 0 values: [1, 1, 1, 1, -1, 1, 1, 1, 1]");
-  EXPECT_NE(e[f + ".spacing"].find("> 0"), std::string::npos);
+  EXPECT_NE(e[f + ".spacing"].find("> 0"), std::string::npos) << e[f + ".spacing"];
   e = errors_for(2, ok2 + " scale: -2");
-  EXPECT_NE(e[f + ".scale"].find("> 0"), std::string::npos);
+  EXPECT_NE(e[f + ".scale"].find("> 0"), std::string::npos) << e[f + ".scale"];
   e = errors_for(2,
                  "counts: [3, 3] origin { x: 5 y: 5 } spacing: 0.02 values: [1, 1, 1, 1, -1, "
                  "1, 1, 1, 1]");
-  EXPECT_NE(e[f].find("outside the domain"), std::string::npos);
+  EXPECT_NE(e[f].find("outside the domain"), std::string::npos) << e[f];
   e = errors_for(2, "file: \"part.h5\" spacing: 1");
-  EXPECT_NE(e[f + ".file"].find("inlined"), std::string::npos);
+  EXPECT_NE(e[f + ".file"].find("inlined"), std::string::npos) << e[f + ".file"];
   for (const auto& [field, msg] : e) std::printf("  %s: %s\n", field.c_str(), msg.c_str());
 }
 

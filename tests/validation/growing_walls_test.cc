@@ -188,6 +188,8 @@ TEST(GrowingWalls, TheFrontEngulfsADiskItReaches) {
       std::abs(total1 - total0) / total0);
   EXPECT_EQ(e.back(), 1.0);
   EXPECT_EQ(rigid_after, 0u);
+  // The engulfed body's particles keep their masses as wall particles.
+  EXPECT_LT(std::abs(total1 - total0) / total0, 1e-13);
   EXPECT_GT(rigid_before, 0u);
   EXPECT_GE(expected, k > 0 ? t[k - 1] : 0.0);
   EXPECT_LE(expected, t[k] + 1e-9);

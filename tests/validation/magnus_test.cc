@@ -11,8 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "tests/support/result_reader.h"
@@ -21,17 +19,11 @@
 namespace sph {
 namespace {
 
-void replace_all(std::string& s, const std::string& from, const std::string& to) {
-  ASSERT_NE(s.find(from), std::string::npos) << "the case no longer holds '" << from << "'";
-  for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
-    s.replace(at, from.size(), to);
-}
-
 TEST(Magnus, RotatingCylinderLiftsTowardsItsFasterSide) {
-  std::ifstream in(test::source_dir() + "/cases/magnus_cylinder_2d.textproto");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
+  std::string s = test::case_text("magnus_cylinder_2d");
+  const auto replace_all = [&](std::string& t, const std::string& from, const std::string& to) {
+    ASSERT_GT(test::replace_all(t, from, to), 0) << "the case no longer holds '" << from << "'";
+  };
   // Twice the spacing: walls and buffers grow to the kernel support (3 dx = 0.6).
   replace_all(s, "dx: 0.1\n", "dx: 0.2\n");
   replace_all(s, "-4.4", "-4.6");
@@ -39,6 +31,7 @@ TEST(Magnus, RotatingCylinderLiftsTowardsItsFasterSide) {
   replace_all(s, "y: 4.4 ", "y: 4.6 ");
   replace_all(s, "end_time: 40 }", "end_time: 10 }");
   replace_all(s, "output { interval: 10 ", "output { interval: 0 ");
+  ASSERT_FALSE(::testing::Test::HasFatalFailure());  // an edit found nothing to replace
   const std::string out = test::output_dir("magnus");
   const RunOutcome r = test::run(parse_case_text(s), out);
   ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;

@@ -7,8 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "tests/support/result_reader.h"
@@ -17,23 +15,15 @@
 namespace sph {
 namespace {
 
-void replace_all(std::string& s, const std::string& from, const std::string& to) {
-  for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
-    s.replace(at, from.size(), to);
-}
-
 TEST(RotatingCross, TheFlowTurnsThePinnedCrossBack) {
-  std::ifstream in(test::source_dir() + "/cases/rotating_cross_2d.textproto");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
+  std::string s = test::case_text("rotating_cross_2d");
   // Twice the spacing: walls and buffers grow to the kernel support (3 dx = 0.6).
-  replace_all(s, "dx: 0.1\n", "dx: 0.2\n");
-  replace_all(s, "-3.3", "-3.6");
-  replace_all(s, "9.3", "9.6");
-  replace_all(s, "y: 3.3 ", "y: 3.6 ");
-  replace_all(s, "end_time: 30", "end_time: 5");
-  replace_all(s, "output { interval: 1 ", "output { interval: 0 ");
+  ASSERT_GT(test::replace_all(s, "dx: 0.1\n", "dx: 0.2\n"), 0);
+  ASSERT_GT(test::replace_all(s, "-3.3", "-3.6"), 0);
+  ASSERT_GT(test::replace_all(s, "9.3", "9.6"), 0);
+  ASSERT_GT(test::replace_all(s, "y: 3.3 ", "y: 3.6 "), 0);
+  ASSERT_GT(test::replace_all(s, "end_time: 30", "end_time: 5"), 0);
+  ASSERT_GT(test::replace_all(s, "output { interval: 1 ", "output { interval: 0 "), 0);
   const std::string out = test::output_dir("rotating_cross");
   const RunOutcome r = test::run(parse_case_text(s), out);
   ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;

@@ -37,7 +37,11 @@ def load_case(path):
     except InvalidCase as e:
         raise InvalidCase(f"{path}: {e}") from None
     base = os.path.dirname(os.path.abspath(path))
+    # What the case holds inline counts against the limits too (case/load.cc does the same).
     budget = {"triangles": 0, "nodes": 0, "dimension": case.dimension}
+    for group in ("fluids", "walls", "bodies", "elastic_bodies"):
+        for region in getattr(case, group):
+            _count_inline(region.shape, budget)
     for group in ("fluids", "walls", "bodies", "elastic_bodies"):
         for i, region in enumerate(getattr(case, group)):
             _inline_shape(region.shape, base, f"{group}[{i}].shape", budget)
@@ -74,6 +78,7 @@ def _inline_shape(shape, base, field, budget):
         shape.mesh.ClearField("file")
     elif kind == "distance_grid" and shape.distance_grid.file:
         path = os.path.join(base, shape.distance_grid.file)
+        budget["nodes"] -= len(shape.distance_grid.values)  # the file's values replace these
         left = max(0, MAX_DISTANCE_GRID_NODES - budget["nodes"])
         _read_distance_grid(path, field + ".distance_grid.file", budget["dimension"], left,
                             shape.distance_grid)
@@ -88,6 +93,22 @@ def _inline_shape(shape, base, field, budget):
             _inline_shape(s, base, f"{field}.difference.subtract[{i}]", budget)
     elif kind == "shell":
         _inline_shape(shape.shell.inner, base, field + ".shell.inner", budget)
+
+
+def _count_inline(shape, budget):
+    kind = shape.WhichOneof("kind")
+    if kind == "mesh":
+        budget["triangles"] += len(shape.mesh.triangles) // 3
+    elif kind == "distance_grid":
+        budget["nodes"] += len(shape.distance_grid.values)
+    elif kind in ("union", "intersection"):
+        for s in getattr(shape, kind).shapes:
+            _count_inline(s, budget)
+    elif kind == "difference":
+        for s in [shape.difference.base] + list(shape.difference.subtract):
+            _count_inline(s, budget)
+    elif kind == "shell":
+        _count_inline(shape.shell.inner, budget)
 
 
 def _read_stl(path, field, max_triangles):
