@@ -87,6 +87,8 @@ class NeighborList {
     return cur_.nbr.data() + cur_.fluid_end[i];
   }
   std::size_t pairs() const { return cur_.pairs; }
+  // Owned particles the lists were made for.
+  std::size_t listed() const { return cur_.start.empty() ? 0 : cur_.start.size() - 1; }
   std::size_t candidate_pairs() const { return cand_.pairs; }
   // Contact candidates of owned rigid particle i (empty without a ContactQuery).
   const std::uint32_t* contacts_begin(std::size_t i) const {

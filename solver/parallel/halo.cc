@@ -54,6 +54,41 @@ void Halo<D>::set_decomposition(Decomposition<D> d) {
       if (!cells.empty()) targets_.push_back({r, cells, shift});
     }
   }
+  // Peers: the ranks targeted above, and those that target this rank, found by the same
+  // rule evaluated from their side (their box against this rank's expanded box).
+  CellBox<D> mine_grown = mine;
+  for (int a = 0; a < D; ++a) {
+    --mine_grown.lo[a];
+    ++mine_grown.hi[a];
+  }
+  std::vector<char> peer(static_cast<size_t>(comm_.size()), 0);
+  for (const Target& t : targets_) peer[static_cast<size_t>(t.rank)] = 1;
+  for (int r = 0; r < comm_.size(); ++r) {
+    if (r == comm_.rank()) continue;
+    const CellBox<D>& theirs = decomp_.box(r);
+    for (const auto& s : periodic_shifts<D>(grid_.periodic)) {
+      CellBox<D> cells;
+      for (int a = 0; a < D; ++a) {
+        cells.lo[a] = std::max(theirs.lo[a], mine_grown.lo[a] - s[a] * grid_.n[a]);
+        cells.hi[a] = std::min(theirs.hi[a], mine_grown.hi[a] - s[a] * grid_.n[a]);
+      }
+      if (!cells.empty()) peer[static_cast<size_t>(r)] = 1;
+    }
+  }
+  peers_.clear();
+  for (int r = 0; r < comm_.size(); ++r)
+    if (r != comm_.rank() && peer[static_cast<size_t>(r)]) peers_.push_back(r);
+}
+
+template <int D>
+void Halo<D>::lay_out_recv_buffer() {
+  recv_displ_.assign(recv_bytes_.size(), 0);
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < recv_bytes_.size(); ++r) {
+    recv_displ_[r] = static_cast<int>(total);
+    total += static_cast<std::size_t>(recv_bytes_[r]);
+  }
+  recv_buf_.resize(total);
 }
 
 template <int D>
@@ -77,15 +112,61 @@ void Halo<D>::exchange() {
   const double t0 = MPI_Wtime();
   recv_bytes_.assign(static_cast<size_t>(P), 0);
   MPI_Alltoall(send_bytes.data(), 1, MPI_INT, recv_bytes_.data(), 1, MPI_INT, comm_.raw());
-  recv_displ_.assign(static_cast<size_t>(P), 0);
-  std::size_t rtotal = 0;
-  for (int r = 0; r < P; ++r) {
-    recv_displ_[static_cast<size_t>(r)] = static_cast<int>(rtotal);
-    rtotal += static_cast<std::size_t>(recv_bytes_[static_cast<size_t>(r)]);
-  }
-  recv_buf_.resize(rtotal);
+  lay_out_recv_buffer();
   MPI_Alltoallv(flat.data(), send_bytes.data(), send_displ.data(), MPI_BYTE, recv_buf_.data(),
                 recv_bytes_.data(), recv_displ_.data(), MPI_BYTE, comm_.raw());
+  comm_seconds_ += MPI_Wtime() - t0;
+}
+
+template <int D>
+void Halo<D>::exchange_with_peers(bool recv_sizes_known) {
+  const int P = comm_.size(), me = comm_.rank();
+  constexpr int kCountTag = 7301, kDataTag = 7302;
+  for (const int r : peers_)
+    if (send_buf_[static_cast<size_t>(r)].size() >
+        static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw std::runtime_error("halo exchange over 2 GiB to one rank: use more ranks");
+  const double t0 = MPI_Wtime();
+  if (!recv_sizes_known) {
+    recv_bytes_.assign(static_cast<size_t>(P), 0);
+    peer_counts_.assign(2 * peers_.size(), 0);
+    requests_.clear();
+    for (std::size_t k = 0; k < peers_.size(); ++k) {
+      requests_.emplace_back();
+      MPI_Irecv(&peer_counts_[k], 1, MPI_INT, peers_[k], kCountTag, comm_.raw(), &requests_.back());
+    }
+    for (std::size_t k = 0; k < peers_.size(); ++k) {
+      peer_counts_[peers_.size() + k] =
+          static_cast<int>(send_buf_[static_cast<size_t>(peers_[k])].size());
+      requests_.emplace_back();
+      MPI_Isend(&peer_counts_[peers_.size() + k], 1, MPI_INT, peers_[k], kCountTag, comm_.raw(),
+                &requests_.back());
+    }
+    MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+    for (std::size_t k = 0; k < peers_.size(); ++k)
+      recv_bytes_[static_cast<size_t>(peers_[k])] = peer_counts_[k];
+    recv_bytes_[static_cast<size_t>(me)] =
+        static_cast<int>(send_buf_[static_cast<size_t>(me)].size());
+  }
+  lay_out_recv_buffer();
+  requests_.clear();
+  for (const int r : peers_) {
+    requests_.emplace_back();
+    MPI_Irecv(recv_buf_.data() + recv_displ_[static_cast<size_t>(r)],
+              recv_bytes_[static_cast<size_t>(r)], MPI_BYTE, r, kDataTag, comm_.raw(),
+              &requests_.back());
+  }
+  for (const int r : peers_) {
+    auto& buf = send_buf_[static_cast<size_t>(r)];
+    requests_.emplace_back();
+    MPI_Isend(buf.data(), static_cast<int>(buf.size()), MPI_BYTE, r, kDataTag, comm_.raw(),
+              &requests_.back());
+  }
+  // Periodic images of this rank's own particles travel by copy.
+  const auto& self = send_buf_[static_cast<size_t>(me)];
+  if (!self.empty())
+    std::memcpy(recv_buf_.data() + recv_displ_[static_cast<size_t>(me)], self.data(), self.size());
+  MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
   comm_seconds_ += MPI_Wtime() - t0;
 }
 
@@ -218,7 +299,7 @@ void Halo<D>::build_ghosts(ParticleStore<D>& s) {
   std::size_t per = 0;
   for (const ColumnBase* c : cols) per += c->elem_bytes();
   pack(s, cols, true);
-  exchange();
+  exchange_with_peers(false);
   recv_particles_.assign(static_cast<size_t>(P), 0);
   std::size_t incoming = 0;
   for (int r = 0; r < P; ++r) {
@@ -232,10 +313,21 @@ void Halo<D>::build_ghosts(ParticleStore<D>& s) {
 }
 
 template <int D>
+void Halo<D>::set_recv_bytes(const std::vector<ColumnBase*>& cols) {
+  std::size_t per = 0;
+  for (const ColumnBase* c : cols) per += c->elem_bytes();
+  recv_bytes_.resize(static_cast<size_t>(comm_.size()));
+  for (int r = 0; r < comm_.size(); ++r)
+    recv_bytes_[static_cast<size_t>(r)] =
+        static_cast<int>(per * static_cast<std::size_t>(recv_particles_[static_cast<size_t>(r)]));
+}
+
+template <int D>
 void Halo<D>::update(ParticleStore<D>& s, std::initializer_list<ColumnBase*> list) {
   std::vector<ColumnBase*> cols(list);
   pack(s, cols, true);  // positions, if listed, shifted for periodic images as when built
-  exchange();
+  set_recv_bytes(cols);
+  exchange_with_peers(true);
   unpack(cols, s.owned());
 }
 
@@ -245,7 +337,8 @@ void Halo<D>::refresh_ghosts(ParticleStore<D>& s) {
   for (const auto& c : s.columns())
     if (c->ghost()) cols.push_back(c.get());
   pack(s, cols, true);
-  exchange();
+  set_recv_bytes(cols);
+  exchange_with_peers(true);
   unpack(cols, s.owned());
 }
 

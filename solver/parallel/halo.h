@@ -64,8 +64,17 @@ class Halo {
     CellBox<D> cells;  // cells of this rank's box the target needs
     Vec<D> shift;      // added to positions (periodic image)
   };
-  // Exchanges per-rank byte buffers; returns received bytes per source rank in recv_.
+  // Exchanges per-rank byte buffers with every rank (MPI_Alltoallv); received bytes per source
+  // rank land in recv_buf_. For migration, where any rank may receive from any other.
   void exchange();
+  // The same with the ghost peers only (point-to-point, non-blocking): a rank waits for its
+  // neighbours, not for every rank. recv_sizes_known: recv_bytes_ already holds what each peer
+  // sends (a refresh of the ghosts the last build_ghosts() made); otherwise sizes go first.
+  void exchange_with_peers(bool recv_sizes_known);
+  // recv_displ_ and the size of recv_buf_ from recv_bytes_ (sources in rank order).
+  void lay_out_recv_buffer();
+  // recv_bytes_ for a refresh of the listed columns of the last build_ghosts()'s ghosts.
+  void set_recv_bytes(const std::vector<ColumnBase*>& cols);
   void pack(const ParticleStore<D>& s, const std::vector<ColumnBase*>& cols, bool shift_positions);
   void unpack(const std::vector<ColumnBase*>& cols, std::size_t first);
 
@@ -73,6 +82,10 @@ class Halo {
   Comm comm_;
   Decomposition<D> decomp_;
   std::vector<Target> targets_;
+  // Ranks other than this one that ghosts go to or come from, ascending (set_decomposition).
+  std::vector<int> peers_;
+  std::vector<MPI_Request> requests_;
+  std::vector<int> peer_counts_;
   std::vector<std::vector<std::uint32_t>> send_idx_;  // per destination rank
   std::vector<std::vector<Vec<D>>> send_shift_;       // per destination rank
   std::vector<int> recv_particles_;                   // per source rank

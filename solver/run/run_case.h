@@ -82,6 +82,9 @@ struct RunOptions {
   // itself once the server has heard of newer ones, see worker/pool/checkpoint_pruner.h).
   bool prune_checkpoints = true;
   bool quiet = false;  // no progress lines on stdout (rank 0)
+  // Balance ranks by a fixed work per particle kind instead of by each particle's pairs
+  // (solver/parallel/load_balance.h); for benchmarks that compare the two.
+  bool balance_by_kind = false;
 };
 
 // Runs a validated case. Collective over `comm`: every rank calls it with the same case.

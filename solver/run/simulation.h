@@ -90,6 +90,7 @@ class Simulation {
   std::int64_t steps() const { return step_; }
   double dt() const { return dt_; }
   std::size_t pairs() const { return nl_.pairs(); }
+  const NeighborList<D>& neighbor_list() const { return nl_; }
   std::map<std::string, std::size_t> memory_by_owner() const;
   // Seconds spent in MPI communication (halo exchanges and step reductions).
   double communication_seconds() {
@@ -97,6 +98,7 @@ class Simulation {
     return comm_seconds_;
   }
   double imbalance() const { return imbalance_; }
+  std::int64_t rebalances() const { return rebalances_; }  // since this process started
   std::int64_t global_particles() const { return global_particles_; }
   // Particles melted and solidified since the start (all ranks; 0 without phase transitions).
   std::int64_t particles_melted() const { return phase_ ? phase_->melted_total() : 0; }
@@ -116,6 +118,7 @@ class Simulation {
 
   void build_scene();
   void build_units();
+  // By the work of the owned particles per kind (before the lists of a resumed run exist).
   void decompose_by_histogram();
   void prime();
   // How exchange_and_search() finds the neighbours:
@@ -261,6 +264,8 @@ class Simulation {
   // Bookkeeping.
   std::map<std::string, double> timers_;
   double imbalance_ = 1;
+  bool rebalance_due_ = false;  // checked at the start of the next step
+  std::int64_t rebalances_ = 0;
   std::int64_t global_particles_ = 0;
   bool last_step_had_snapshot_ = false;
   double comm_seconds_ = 0;

@@ -179,10 +179,12 @@ void Simulation<D, K>::start() {
     if (contact_) min_contact_distance_ = comm_.min(nl_.min_contact_distance());
     recorder_.result().declare([this] { record_series(); });
     recorder_.result().create(metadata("running"));
-    maybe_rebalance();
     sample_series();
     write_snapshot();
     next_output_ = schedule_.first_after(0.0);
+    // After the first sample and snapshot: a rebalance migrates only the persistent columns,
+    // and units' other columns (normals, curvature) are written again in the first step.
+    maybe_rebalance();
   } else {
     const CheckpointState state = read_checkpoint(comm_, opt_.resume_from, s_);
     try {
@@ -264,6 +266,12 @@ void Simulation<D, K>::prime() {
 
 template <int D, class K>
 typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
+  // Due since the end of the last step, done now: its series and snapshot have read the
+  // units' columns that a migration does not carry (those not persistent).
+  if (rebalance_due_) {
+    rebalance_due_ = false;
+    maybe_rebalance();
+  }
   const double dt = schedule_.clip(t_, dt_, next_output_);
   // Checked before the step, so the state that stops the run is still the last good one.
   substeps_ = contact_substeps(dt);  // move_bodies uses it
@@ -307,7 +315,7 @@ typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
     }
   }
   if (contact_) contact_possible_ = e.min_contact_distance < contact_->touch_range() + 0.1 * dx_;
-  if (step_ % kRebalanceEvery == 0) maybe_rebalance();
+  if (step_ % kRebalanceEvery == 0) rebalance_due_ = true;
   return rep;
 }
 

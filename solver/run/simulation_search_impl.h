@@ -9,7 +9,7 @@ namespace sph {
 
 template <int D, class K>
 void Simulation<D, K>::decompose_by_histogram() {
-  halo_.set_decomposition(balanced_decomposition(s_, grid_, comm_));
+  halo_.set_decomposition(balanced_decomposition<D>(s_, grid_, comm_, nullptr));
 }
 
 template <int D, class K>
@@ -56,6 +56,11 @@ void Simulation<D, K>::exchange_and_search(Search mode) {
       Timer tm(timer("halo_exchange"));
       swap_positions();
       migrate();
+      // A rebalance brings particles from other ranks at the end of the rows: back in cell
+      // order (by the positions searched at), or every pass misses the cache until the next
+      // reordering search.
+      s_.reorder_owned(owned_cell_order(s_, grid_, halo_.my_box()));
+      reordered_at_ = step_;
       halo_.build_ghosts(s_);
     }
     search_candidates();
@@ -123,19 +128,25 @@ void Simulation<D, K>::migrate() {
 
 template <int D, class K>
 void Simulation<D, K>::maybe_rebalance() {
-  imbalance_ = work_imbalance(s_, comm_);
-  if (comm_.size() > 1 && imbalance_ > kRebalanceImbalance) {
-    {
-      Timer tm(timer("halo_exchange"));
-      s_.drop_ghosts();
-      decompose_by_histogram();
-    }
-    // Migration reorders the owned rows and the ghosts change: the next step's contact drift
-    // and the probes read the neighbour list before that step searches again. The pairs and
-    // their order stay those of the last search, whatever the decomposition.
-    exchange_and_search(Search::kAtReference);
-    imbalance_ = work_imbalance(s_, comm_);
+  // The lists are those of the owned particles now: every caller searched since the last
+  // migration.
+  const NeighborList<D>* lists = opt_.balance_by_kind ? nullptr : &nl_;
+  imbalance_ = work_imbalance(s_, comm_, lists);
+  if (comm_.size() <= 1 || imbalance_ <= kRebalanceImbalance) return;
+  {
+    Timer tm(timer("halo_exchange"));
+    const std::vector<std::int64_t> work = global_work_histogram(s_, grid_, comm_, lists);
+    Decomposition<D> balanced(grid_, comm_.size(), work);
+    if (decomposition_imbalance(balanced, grid_, work) > imbalance_ - kRebalanceGain) return;
+    ++rebalances_;
+    halo_.set_decomposition(std::move(balanced));
+    s_.drop_ghosts();
   }
+  // Migration reorders the owned rows and the ghosts change: the next step's contact drift
+  // and the probes read the neighbour list before that step searches again. The pairs and
+  // their order stay those of the last search, whatever the decomposition.
+  exchange_and_search(Search::kAtReference);
+  imbalance_ = work_imbalance(s_, comm_, lists);
 }
 
 }  // namespace sph

@@ -5,19 +5,26 @@
 //
 //   bench_solver [--dim 2|3] [--particles N] [--steps S] [--kernel quintic|wendland]
 //                [--pair-kernel compact|table|stream]   (Case.pair_kernel_storage; default: the
-//                case's)
+//                case's) [--wall-thickness T]   (the tank's walls T thick: a scene mostly of
+//                wall, as thick-walled cases are, for the load balancer)
+//                [--balance pairs|kind]   (work per particle from its pairs, the default, or
+//                fixed per kind) [--per-rank 1]   (each rank's particles, pairs and busy time)
+//                [--independent 1]   (each rank runs its own copy alone: the machine's ceiling)
 //   bench_solver --case FILE [--steps S] [--skip T]   (any case; --skip advances T steps first,
 //                                                     e.g. to time bodies in contact)
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "case/load.h"
 #include "solver/core/kernel.h"
+#include "solver/parallel/load_balance.h"
 #include "solver/run/simulation.h"
 
 namespace {
@@ -31,7 +38,8 @@ sph::v1::Vec3 vec(double x, double y, double z) {
 }
 
 // Adami 2012 dam break (L = H = 1, tank 4 x 2 [x 1 in 3D]), dx chosen for ~n fluid particles.
-sph::v1::Case dam_break(int dim, double n, bool wendland) {
+// wall_thickness > 0: the tank's walls that thick (a scene mostly of wall, for the balancer).
+sph::v1::Case dam_break(int dim, double n, bool wendland, double wall_thickness) {
   sph::v1::Case c;
   c.set_name("bench_dambreak");
   c.set_dimension(dim);
@@ -39,7 +47,7 @@ sph::v1::Case dam_break(int dim, double n, bool wendland) {
   const double dx = dim == 2 ? 1.0 / std::sqrt(n) : std::cbrt(depth / n);
   c.set_dx(dx);
   c.set_kernel(wendland ? sph::v1::WENDLAND_C2 : sph::v1::QUINTIC_SPLINE);
-  const double pad = 4 * dx;
+  const double pad = 4 * dx + wall_thickness;
   *c.mutable_domain()->mutable_lo() = vec(-pad, -pad, dim == 3 ? -pad : 0);
   *c.mutable_domain()->mutable_hi() = vec(4 + pad, 2 + pad, dim == 3 ? depth + pad : 0);
   auto* m = c.add_materials();
@@ -55,6 +63,7 @@ sph::v1::Case dam_break(int dim, double n, bool wendland) {
   auto* w = c.add_walls();
   w->set_name("tank");
   w->set_free_slip(true);
+  if (wall_thickness > 0) w->mutable_shape()->mutable_shell()->set_thickness(wall_thickness);
   auto* inner = w->mutable_shape()->mutable_shell()->mutable_inner()->mutable_box();
   *inner->mutable_lo() = vec(0, 0, 0);
   *inner->mutable_hi() = vec(4, 2, depth);
@@ -65,8 +74,10 @@ sph::v1::Case dam_break(int dim, double n, bool wendland) {
   return c;
 }
 
+// Returns this run's ms per step; prints the report if `print` (on the comm's rank 0).
 template <int D, class K>
-void bench(const sph::v1::Case& c, int steps, int skip, MPI_Comm comm) {
+double bench(const sph::v1::Case& c, int steps, int skip, bool balance_by_kind, bool per_rank,
+             bool print, MPI_Comm comm) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -76,6 +87,7 @@ void bench(const sph::v1::Case& c, int steps, int skip, MPI_Comm comm) {
           .string();
   o.output_dir = sph::Comm(comm).broadcast(o.output_dir);  // rank 0's pid names the directory
   o.quiet = true;
+  o.balance_by_kind = balance_by_kind;
   sph::Simulation<D, K> sim(c, sph::Comm(comm), o);
   const double t_setup = MPI_Wtime();
   sim.start();
@@ -83,6 +95,7 @@ void bench(const sph::v1::Case& c, int steps, int skip, MPI_Comm comm) {
   for (int k = 0; k < 5 + skip; ++k) sim.step();  // warm-up: first neighbour lists, page faults
   const auto units0 = sim.unit_seconds();
   const double comm0 = sim.communication_seconds();
+  const std::int64_t rebalances0 = sim.rebalances();
   MPI_Barrier(comm);
   const double t0 = MPI_Wtime();
   for (int k = 0; k < steps; ++k) {
@@ -107,19 +120,62 @@ void bench(const sph::v1::Case& c, int steps, int skip, MPI_Comm comm) {
   }
   double comm_max = comm_s;
   MPI_Allreduce(MPI_IN_PLACE, &comm_max, 1, MPI_DOUBLE, MPI_MAX, comm);
+  // Busy time: the step less halo exchange and reductions (and the waits in them). Its
+  // largest over its mean is the imbalance of the work as it ran, not as the work model
+  // counts it.
+  double busy_max = wall - comm_s, busy_sum = wall - comm_s;
+  MPI_Allreduce(MPI_IN_PLACE, &busy_max, 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(MPI_IN_PLACE, &busy_sum, 1, MPI_DOUBLE, MPI_SUM, comm);
+  // Every rank's busy time and unit times, to see where the slowest rank's time goes.
+  std::vector<double> mine;
+  for (const auto& [name, sec] : sim.unit_seconds()) {
+    const auto it = units0.find(name);
+    mine.push_back(sec - (it == units0.end() ? 0.0 : it->second));
+  }
+  if (per_rank) {
+    // Each rank's particles and pairs by kind, beside its busy time: is a slow rank one with
+    // more work than the model counts, or a slower core?
+    double pairs_by_kind[2] = {0, 0}, count_by_kind[2] = {0, 0};
+    for (std::size_t i = 0; i < sim.particles().owned(); ++i) {
+      const int k = sim.particles().kind[i] == sph::Kind::kWall ? 1 : 0;
+      pairs_by_kind[k] +=
+          static_cast<double>(sim.neighbor_list().end(i) - sim.neighbor_list().begin(i));
+      count_by_kind[k] += 1;
+    }
+    std::printf(
+        "  rank %2d: fluid-like %.0f (%.0f pairs), wall %.0f (%.0f pairs), ghosts %zu, busy "
+        "%.2f ms/step\n",
+        rank, count_by_kind[0], pairs_by_kind[0], count_by_kind[1], pairs_by_kind[1],
+        sim.particles().size() - sim.particles().owned(), 1e3 * (wall - comm_s) / steps);
+    std::fflush(stdout);
+  }
+  mine.push_back(wall - comm_s);
+  int len = static_cast<int>(mine.size()), len_min = len, len_max = len;
+  MPI_Allreduce(&len, &len_min, 1, MPI_INT, MPI_MIN, comm);
+  MPI_Allreduce(&len, &len_max, 1, MPI_INT, MPI_MAX, comm);
+  std::vector<double> every(len_min == len_max ? static_cast<std::size_t>(len * size) : 0);
+  if (len_min == len_max)
+    MPI_Gather(mine.data(), len, MPI_DOUBLE, every.data(), len, MPI_DOUBLE, 0, comm);
   const double n = static_cast<double>(sim.global_particles());
   double nf = 0;
   for (std::size_t i = 0; i < sim.particles().owned(); ++i)
     nf += sim.particles().kind[i] == sph::Kind::kFluid ? 1 : 0;
   MPI_Allreduce(MPI_IN_PLACE, &nf, 1, MPI_DOUBLE, MPI_SUM, comm);
-  if (rank == 0) {
+  // The load balancer's work model (solver/parallel/load_balance.h) summed by kind, to fit its
+  // coefficients against measured times.
+  double work[2] = {0, 0};  // fluid-like (fluid, rigid, elastic), wall
+  for (std::size_t i = 0; i < sim.particles().owned(); ++i)
+    work[sim.particles().kind[i] == sph::Kind::kWall ? 1 : 0] +=
+        static_cast<double>(sph::pair_work(sim.particles(), sim.neighbor_list(), i));
+  MPI_Allreduce(MPI_IN_PLACE, work, 2, MPI_DOUBLE, MPI_SUM, comm);
+  if (rank == 0 && print) {
     std::printf(
         "bench_solver case=%s dim=%d kernel=%s pair_kernel=%s ranks=%d particles=%.0f (dx=%.4g) "
         "steps=%d from t=%.4g setup=%.2fs\n",
         c.name().c_str(), D, K::kSupport == 3.0 ? "quintic" : "wendland",
-        c.pair_kernel_storage() == sph::v1::PAIR_KERNEL_STREAM  ? "stream"
-        : c.pair_kernel_storage() == sph::v1::PAIR_KERNEL_TABLE ? "table"
-                                                                : "compact",
+        c.pair_kernel_storage() == sph::v1::PAIR_KERNEL_STREAM    ? "stream"
+        : c.pair_kernel_storage() == sph::v1::PAIR_KERNEL_COMPACT ? "compact"
+                                                                  : "table",
         size, n, c.dx(), steps, sim.time(), setup);
     std::printf("  time/step          %10.3f ms\n", 1e3 * wall / steps);
     std::printf("  particle-steps/s   %10.3e  (%.3e per rank; all particles, walls included)\n",
@@ -128,12 +184,43 @@ void bench(const sph::v1::Case& c, int steps, int skip, MPI_Comm comm) {
                 nf * steps / wall, nf * steps / wall / size, nf);
     std::printf("  pair interactions  %10.3e /s  (%.1f neighbours per particle)\n",
                 pairs * steps / wall, pairs / n);
+    std::printf(
+        "  work model         %10.4g fluid-like, %.4g wall (quarter pair visits, %.0f wall "
+        "particles)\n",
+        work[0], work[1], n - nf);
     std::printf("  memory             %10.0f bytes/particle\n", bytes / n);
     for (const auto& [owner, b] : by_owner)
       if (b > 0) std::printf("    %-22s %6.0f B\n", owner.c_str(), static_cast<double>(b) / n);
-    std::printf("  communication      %10.1f %% of step time (rank 0), %.1f %% (slowest rank)\n",
-                100 * comm_s / wall, 100 * comm_max / wall);
-    std::printf("  imbalance          %10.3f (largest rank / mean)\n", sim.imbalance());
+    std::printf(
+        "  communication      %10.1f %% of step time (rank 0), %.1f %% (rank that waits most)\n",
+        100 * comm_s / wall, 100 * comm_max / wall);
+    std::printf("  imbalance          %10.3f (work model: largest rank / mean; %lld rebalances)\n",
+                sim.imbalance(), static_cast<long long>(sim.rebalances() - rebalances0));
+    std::printf(
+        "  busy imbalance     %10.3f (measured: largest rank's time outside communication / "
+        "mean)\n",
+        busy_sum > 0 ? busy_max * size / busy_sum : 1.0);
+    if (!every.empty() && size > 1) {
+      int slow = 0, fast = 0;
+      const auto busy_of = [&](int r) {
+        return every[static_cast<std::size_t>(r * len + len - 1)];
+      };
+      std::printf("  busy per rank      ");
+      for (int r = 0; r < size; ++r) {
+        std::printf(" %.2f", 1e3 * busy_of(r) / steps);
+        if (busy_of(r) > busy_of(slow)) slow = r;
+        if (busy_of(r) < busy_of(fast)) fast = r;
+      }
+      std::printf(" ms/step\n  time per unit, slowest rank %d / fastest rank %d (%% of step):\n",
+                  slow, fast);
+      int k = 0;
+      for (const auto& [name, sec] : sim.unit_seconds()) {
+        std::printf("      %-22s %6.1f %6.1f\n", name.c_str(),
+                    100 * every[static_cast<std::size_t>(slow * len + k)] / wall,
+                    100 * every[static_cast<std::size_t>(fast * len + k)] / wall);
+        ++k;
+      }
+    }
     std::printf("  time per unit (rank 0):\n");
     for (const auto& [name, sec] : sim.unit_seconds()) {
       const auto it = units0.find(name);
@@ -141,8 +228,9 @@ void bench(const sph::v1::Case& c, int steps, int skip, MPI_Comm comm) {
       std::printf("    %-22s %6.1f %%\n", name.c_str(), 100 * d / wall);
     }
     std::fflush(stdout);
-    std::filesystem::remove_all(o.output_dir);
   }
+  if (rank == 0) std::filesystem::remove_all(o.output_dir);
+  return 1e3 * wall / steps;
 }
 
 }  // namespace
@@ -151,7 +239,8 @@ int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
   int dim = 2, steps = 50, skip = 0;
   std::string case_file;
-  double particles = 20000;
+  double particles = 20000, wall_thickness = 0;
+  bool balance_by_kind = false, per_rank = false, independent = false;
   bool wendland = false;
   std::string pair_kernel;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -170,9 +259,17 @@ int main(int argc, char** argv) {
       skip = std::stoi(v);
     else if (a == "--pair-kernel")
       pair_kernel = v;
+    else if (a == "--wall-thickness")
+      wall_thickness = std::stod(v);
+    else if (a == "--balance")
+      balance_by_kind = v == "kind";
+    else if (a == "--per-rank")
+      per_rank = v == "1";
+    else if (a == "--independent")
+      independent = v == "1";
   }
-  sph::v1::Case c =
-      case_file.empty() ? dam_break(dim, particles, wendland) : sph::load_case_file(case_file);
+  sph::v1::Case c = case_file.empty() ? dam_break(dim, particles, wendland, wall_thickness)
+                                      : sph::load_case_file(case_file);
   if (!case_file.empty()) {
     dim = c.dimension();
     wendland = c.kernel() == sph::v1::WENDLAND_C2;
@@ -185,16 +282,42 @@ int main(int argc, char** argv) {
   if (pair_kernel == "stream") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_STREAM);
   if (pair_kernel == "table") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_TABLE);
   if (pair_kernel == "compact") c.set_pair_kernel_storage(sph::v1::PAIR_KERNEL_COMPACT);
+  // --independent 1: every rank runs its own copy of the case alone (MPI_COMM_SELF), none
+  // waiting for another. Against one copy run alone, this is the machine's ceiling for the
+  // solver's speed-up: what the cores give when they all work at once and never communicate.
+  int world_rank = 0, world_size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &world_size);
+  const MPI_Comm comm = independent ? MPI_COMM_SELF : MPI_COMM_WORLD;
+  const bool print = world_rank == 0;
+  double ms = 0;
   if (dim == 2) {
     if (wendland)
-      bench<2, sph::WendlandC2<2>>(c, steps, skip, MPI_COMM_WORLD);
+      ms = bench<2, sph::WendlandC2<2>>(c, steps, skip, balance_by_kind, per_rank, print, comm);
     else
-      bench<2, sph::QuinticSpline<2>>(c, steps, skip, MPI_COMM_WORLD);
+      ms = bench<2, sph::QuinticSpline<2>>(c, steps, skip, balance_by_kind, per_rank, print, comm);
   } else {
     if (wendland)
-      bench<3, sph::WendlandC2<3>>(c, steps, skip, MPI_COMM_WORLD);
+      ms = bench<3, sph::WendlandC2<3>>(c, steps, skip, balance_by_kind, per_rank, print, comm);
     else
-      bench<3, sph::QuinticSpline<3>>(c, steps, skip, MPI_COMM_WORLD);
+      ms = bench<3, sph::QuinticSpline<3>>(c, steps, skip, balance_by_kind, per_rank, print, comm);
+  }
+  if (independent) {
+    std::vector<double> all(static_cast<std::size_t>(world_size));
+    MPI_Gather(&ms, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    if (world_rank == 0) {
+      double lo = all[0], hi = all[0], sum = 0;
+      for (const double v : all) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+        sum += v;
+      }
+      std::printf(
+          "  independent copies %10d: ms/step min %.3f mean %.3f max %.3f\n  per copy          ",
+          world_size, lo, sum / world_size, hi);
+      for (const double v : all) std::printf(" %.2f", v);
+      std::printf("\n");
+    }
   }
   MPI_Finalize();
   return 0;

@@ -7,6 +7,8 @@
 # log per run and summary.tsv (default scaling-out). Environment:
 #   MPIRUN   the launcher (default mpirun; orterun from ../shared/tools/mpi-bundle.sh elsewhere)
 #   CORES    the largest rank count (default: the number of cores)
+#   RANKS    the rank counts to run (default: 1 2 4 ... CORES), e.g. "1 16" for a quick comparison
+#   BENCH_ARGS  extra bench_solver arguments for every run (e.g. "--balance kind")
 #   QUICK=1  small cases and few steps, to check the script on a 2-core machine
 #
 # Runs, each alone on the machine with one rank per core (--bind-to core):
@@ -32,10 +34,15 @@ if [ "${QUICK:-0}" = 1 ]; then
 else
   # 2D: 1M fluid in the 1 x 1 column, ~1.03M with the tank; 3D: 500k fluid, ~1.03M with the
   # tank's three wall layers.
-  big2=1000000 big3=500000 small2=80000 weak=100000 s2=10 s3=5 s88=60 sw=20
+  big2=1000000 big3=500000 small2=80000 weak=100000 s2=20 s3=10 s88=120 sw=30
 fi
 ranks=()
-for n in 1 2 4 8 16 32 64; do [ "$n" -le "$cores" ] && ranks+=("$n"); done
+if [ -n "${RANKS:-}" ]; then
+  read -r -a ranks <<<"$RANKS"
+else
+  for n in 1 2 4 8 16 32 64; do [ "$n" -le "$cores" ] && ranks+=("$n"); done
+fi
+read -r -a bench_args <<<"${BENCH_ARGS:-}"
 
 {
   echo "== machine"
@@ -43,7 +50,7 @@ for n in 1 2 4 8 16 32 64; do [ "$n" -le "$cores" ] && ranks+=("$n"); done
   "$bin/bench_stream" --threads "$cores" --mib 256
 } | tee "$out/machine.txt"
 
-printf 'series\tranks\tparticles\tms_per_step\tefficiency\tcommunication_pct\tcommunication_slowest_pct\timbalance\tbytes_per_particle\tunits\n' >"$out/summary.tsv"
+printf 'series\tranks\tparticles\tms_per_step\tefficiency\tcommunication_pct\tcommunication_most_waiting_pct\timbalance\tbusy_imbalance\tbytes_per_particle\tunits\n' >"$out/summary.tsv"
 
 # run SERIES RANKS BASE_MS MODE [extra launcher args] -- bench args; prints ms/step.
 run() {
@@ -53,19 +60,20 @@ run() {
   while [ "$1" != -- ]; do extra+=("$1"); shift; done
   shift
   local log="$out/${series}_${np}.log"
-  "${launch[@]}" "${extra[@]}" -np "$np" "$bin/bench_solver" --kernel wendland "$@" >"$log" 2>&1
+  "${launch[@]}" "${extra[@]}" -np "$np" "$bin/bench_solver" --kernel wendland "${bench_args[@]}" "$@" >"$log" 2>&1
   awk -v s="$series" -v np="$np" -v base="$base" -v mode="$mode" '
     /^bench_solver/ { for (i = 1; i <= NF; ++i) if ($i ~ /^particles=/) { split($i, a, "="); n = a[2] } }
     /time\/step/ { t = $2 }
     /memory/ { b = $2 }
-    /communication/ { c = $2; cs = $9 }
-    /imbalance/ { im = $2 }
-    /^    / { u = u sprintf("%s%s %s%%", (u == "" ? "" : ", "), $1, $2) }
+    /^  communication/ { c = $2; cs = $9 }
+    /^  imbalance/ { im = $2 }
+    /^  busy imbalance/ { bi = $3 }
+    /^    [a-z_]+ +[0-9.]+ %$/ { u = u sprintf("%s%s %s%%", (u == "" ? "" : ", "), $1, $2) }
     END {
       b0 = (base == "" ? t : base)
       eff = (mode == "strong" ? b0 / (np * t) : b0 / t)
-      printf "%s\t%d\t%s\t%.3f\t%.3f\t%s\t%s\t%s\t%s\t%s\n", s, np, n, t, eff, c, cs, im, b, u
-    }' "$log" | tee -a "$out/summary.tsv" | cut -f1-8 >&2
+      printf "%s\t%d\t%s\t%.3f\t%.3f\t%s\t%s\t%s\t%s\t%s\t%s\n", s, np, n, t, eff, c, cs, im, bi, b, u
+    }' "$log" | tee -a "$out/summary.tsv" | cut -f1-9 >&2
   awk '/time\/step/ { print $2 }' "$log"
 }
 
@@ -94,4 +102,4 @@ run tcp_strong_2d_1M "$top" "$base2" strong --mca btl self,tcp -- --dim 2 --part
   --steps "$s2" >/dev/null
 run tcp_weak_2d_100k "$top" "$baseweak" weak --mca btl self,tcp -- --dim 2 \
   --particles $((weak * top)) --steps "$sw" >/dev/null
-column -t -s $'\t' <(cut -f1-9 "$out/summary.tsv")
+column -t -s $'\t' <(cut -f1-10 "$out/summary.tsv")
