@@ -42,6 +42,26 @@ TimeFunction::TimeFunction(const v1::TimeFunction& f) : start_(f.start_time()), 
   }
 }
 
+double TimeFunction::max_value() const {
+  double peak = 0;
+  switch (kind_) {
+    case Kind::kZero:
+      return 0.0;
+    case Kind::kConstant:
+      peak = c_;
+      break;
+    case Kind::kSine:
+      peak = offset_ + std::abs(amp_);
+      break;
+    case Kind::kLinear:
+    case Kind::kStep:  // held at the ends, linear or constant between: a table value is the top
+      if (!values_.empty()) peak = *std::max_element(values_.begin(), values_.end());
+      break;
+  }
+  const bool always_active = start_ <= 0.0 && end_ <= 0.0;
+  return always_active ? peak : std::max(peak, 0.0);
+}
+
 double TimeFunction::raw_value(double t) const {
   switch (kind_) {
     case Kind::kZero:

@@ -14,6 +14,9 @@ class TimeFunction {
   double derivative(double t) const;
   double integral(double t) const;  // from 0 to t
   bool is_zero() const { return kind_ == Kind::kZero; }
+  // The largest value it takes at any time t >= 0 (0 outside its active window, if it has one);
+  // an upper bound where the window cuts off a sine's crest.
+  double max_value() const;
 
  private:
   enum class Kind { kZero, kConstant, kSine, kLinear, kStep };

@@ -5,32 +5,10 @@
 #include <limits>
 
 #include "case/estimate.h"
+#include "case/time_function.h"
 #include "solver/parallel/exact_sum.h"
 
 namespace sph {
-namespace {
-
-// The largest value a speed function takes (validation keeps it >= 0).
-double largest_speed(const v1::TimeFunction& f) {
-  switch (f.kind_case()) {
-    case v1::TimeFunction::kConstant:
-      return f.constant();
-    case v1::TimeFunction::kSine:
-      return f.sine().offset() + std::abs(f.sine().amplitude());
-    case v1::TimeFunction::kPiecewiseLinear:
-    case v1::TimeFunction::kPiecewiseConstant: {
-      const auto& t = f.has_piecewise_linear() ? f.piecewise_linear() : f.piecewise_constant();
-      double v = 0;
-      for (const double x : t.values()) v = std::max(v, x);
-      return v;
-    }
-    case v1::TimeFunction::KIND_NOT_SET:
-      break;
-  }
-  return 0;
-}
-
-}  // namespace
 
 template <int D>
 WallGrowth<D>::WallGrowth(const v1::Case& c, const std::vector<MaterialParams>& materials,
@@ -50,7 +28,7 @@ WallGrowth<D>::WallGrowth(const v1::Case& c, const std::vector<MaterialParams>& 
     g.shape = compile_shape(pw.shape(), c.dimension(), shell);
     g.bounds = g.shape->bounds();
     // A quarter layer per step at most: the front passes each particle in its own step.
-    const double v = largest_speed(pw.growth_speed());
+    const double v = TimeFunction(pw.growth_speed()).max_value();
     if (v > 0) max_dt_ = std::min(max_dt_, 0.25 * dx / v);
     walls_.push_back(std::move(g));
   }

@@ -1,6 +1,7 @@
 // Shapes, the lattice fill, and prescribed motion.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -118,6 +119,29 @@ TEST(TimeFunction, IntegralsAndDerivativesAreExact) {
       "piecewise_constant { times: 0 times: 1 values: 3 values: 5 }", &k);
   const TimeFunction tk(k);
   EXPECT_DOUBLE_EQ(tk.integral(2.0), 3.0 + 5.0);
+
+  // The largest value over all t >= 0, sampled densely: the sine's crest, the table's top
+  // value, and 0 where a function negative everywhere is inactive before its start. A window
+  // that cuts off a crest leaves max_value() an upper bound.
+  const auto sampled_max = [](const TimeFunction& fn) {
+    double m = -1e300;
+    for (double t = 0; t < 6; t += 1e-4) m = std::max(m, fn.value(t));
+    return m;
+  };
+  EXPECT_NEAR(tf.max_value(), 2.5, 1e-12);
+  EXPECT_LE(sampled_max(tf), tf.max_value());
+  f.clear_start_time();
+  f.clear_end_time();
+  EXPECT_NEAR(sampled_max(TimeFunction(f)), TimeFunction(f).max_value(), 1e-6);
+  EXPECT_DOUBLE_EQ(tg.max_value(), 2.0);
+  EXPECT_NEAR(sampled_max(tg), tg.max_value(), 1e-9);  // the crest at t = 1, sampled near it
+  EXPECT_DOUBLE_EQ(tk.max_value(), 5.0);
+  v1::TimeFunction n;
+  google::protobuf::TextFormat::ParseFromString("constant: -1 start_time: 1", &n);
+  EXPECT_DOUBLE_EQ(TimeFunction(n).max_value(), 0.0);
+  EXPECT_DOUBLE_EQ(sampled_max(TimeFunction(n)), 0.0);
+  n.clear_start_time();
+  EXPECT_DOUBLE_EQ(TimeFunction(n).max_value(), -1.0);
 }
 
 TEST(Motion, RotationAboutMovingCentre) {

@@ -43,7 +43,11 @@ test::ImpactFigures colagrossi(const char* name, double dx, double end_time, Dis
   add_riemann(c, d);
   const std::string out = test::output_dir(name);
   const RunOutcome r = test::run(c, out);
-  EXPECT_EQ(r.status, RunStatus::kCompleted) << r.message;
+  if (r.status != RunStatus::kCompleted) {
+    // The caller's comparisons then fail on zero figures; a partial result is not read.
+    ADD_FAILURE() << name << " did not complete: " << r.message;
+    return {};
+  }
   test::ResultReader rr(out + "/result.h5");
   return test::impact_figures(
       test::probe_signal(rr.series("probes/wall_p1/time"), rr.series("probes/wall_p1/pressure")));
