@@ -132,7 +132,10 @@ double bench(const sph::v1::Case& c, int steps, int skip, bool balance_by_kind, 
     const auto it = units0.find(name);
     mine.push_back(sec - (it == units0.end() ? 0.0 : it->second));
   }
-  if (per_rank) {
+  // Lists of every owned particle (as after any full step; a case whose last step ended
+  // otherwise gets no per-rank pairs and no work model).
+  const bool listed = sim.neighbor_list().listed() == sim.particles().owned();
+  if (per_rank && listed) {
     // Each rank's particles and pairs by kind, beside its busy time: is a slow rank one with
     // more work than the model counts, or a slower core?
     double pairs_by_kind[2] = {0, 0}, count_by_kind[2] = {0, 0};
@@ -164,7 +167,7 @@ double bench(const sph::v1::Case& c, int steps, int skip, bool balance_by_kind, 
   // The load balancer's work model (solver/parallel/load_balance.h) summed by kind, to fit its
   // coefficients against measured times.
   double work[2] = {0, 0};  // fluid-like (fluid, rigid, elastic), wall
-  for (std::size_t i = 0; i < sim.particles().owned(); ++i)
+  for (std::size_t i = 0; listed && i < sim.particles().owned(); ++i)
     work[sim.particles().kind[i] == sph::Kind::kWall ? 1 : 0] +=
         static_cast<double>(sph::pair_work(sim.particles(), sim.neighbor_list(), i));
   MPI_Allreduce(MPI_IN_PLACE, work, 2, MPI_DOUBLE, MPI_SUM, comm);
