@@ -297,6 +297,10 @@ std::string BodyRegrouping<D>::regroup(std::vector<Record>& recs,
     nbody.com = c;
     nbody.fluid_force = F;
     nbody.fluid_torque = T;
+    // Its particles' levers belong to the old bodies' centres: the new body's first kick takes
+    // the whole torque explicitly, the next force evaluation gives it its own damping.
+    nbody.fluid_torque_rest = T;
+    nbody.spin_damping.setZero();
     nbody.contact_force.setZero();
     nbody.contact_torque.setZero();
     nbody.contacts = 0;

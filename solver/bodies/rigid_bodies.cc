@@ -17,7 +17,9 @@ RigidBodies<D>::RigidBodies(ParticleStore<D>& s, const v1::Case& c,
       body_(s.template add<std::int32_t>("body", kName, true)),
       offset_(s.template add<Vec<D>>("body_offset", kName, true)),
       accel_(s.template add<Vec<D>>("wall_acceleration", kName, true)),
-      fluid_force_(s.template add<Vec<D>>("rigid_fluid_force", kName, false)) {
+      fluid_force_(s.template add<Vec<D>>("rigid_fluid_force", kName, false)),
+      spin_lever_(s.template add<Vec<D>>("rigid_spin_lever", kName, false)) {
+  spin_lever_.set_ghost(false);
   // Persistent: set when the bodies move, before particles migrate, and read by the wall
   // condition after; ghosts do not need it.
   accel_.set_ghost(false);
@@ -136,10 +138,23 @@ void RigidBodies<D>::kick(double h, double t) {
   for (RigidBody<D>& b : bodies_) {
     if (b.translates_freely()) b.velocity += h * (b.fluid_force / b.mass + body_force(b, t));
     if (!b.rotates_freely()) continue;
+    // L' = L + h (T_rest + C omega'), omega' = I_w^-1 L': (1 - h C I_w^-1) L' = L + h T_rest.
+    // C damps (its discrete sum is negative definite for a body the fluid surrounds); without
+    // it, or should it not damp, the kick is explicit in the whole torque.
     if constexpr (D == 2) {
-      b.omega += h * b.inverse_inertia(b.fluid_torque);
+      const double denominator = 1.0 - h * b.spin_damping(0, 0) / b.inertia_body(0, 0);
+      if (denominator > 1.0)
+        b.omega = (b.omega + h * b.inverse_inertia(b.fluid_torque_rest)) / denominator;
+      else
+        b.omega += h * b.inverse_inertia(b.fluid_torque);
     } else {
-      b.angular_momentum += h * b.fluid_torque;
+      Eigen::Matrix3d inv;
+      for (int a = 0; a < 3; ++a) inv.col(a) = b.inverse_inertia(Eigen::Vector3d::Unit(a));
+      const Eigen::Matrix3d m = Eigen::Matrix3d::Identity() - h * b.spin_damping * inv;
+      if (!b.spin_damping.isZero() && m.determinant() >= 1.0)
+        b.angular_momentum = m.partialPivLu().solve(b.angular_momentum + h * b.fluid_torque_rest);
+      else
+        b.angular_momentum += h * b.fluid_torque;
       b.update_omega();
     }
   }
@@ -219,7 +234,7 @@ void RigidBodies<D>::update_owned_velocities() {
 
 template <int D>
 void RigidBodies<D>::reduce_fluid_forces(const Comm& comm) {
-  const std::size_t per = D + A;
+  const std::size_t per = D + A + A * A;
   std::vector<RotationMatrix<D>> R(bodies_.size());
   for (std::size_t k = 0; k < bodies_.size(); ++k) R[k] = bodies_[k].orientation.matrix();
   const auto sums = exact_sum(
@@ -229,16 +244,33 @@ void RigidBodies<D>::reduce_fluid_forces(const Comm& comm) {
           if (s_.kind[i] != Kind::kRigid) continue;
           const std::size_t k = static_cast<std::size_t>(body_[i]);
           const Vec<D>& f = fluid_force_[i];
-          const AngVec<D> m = moment<D>(R[k] * offset_[i], f);  // eq. 25 with r_rk = R b_r
+          const Vec<D> r = R[k] * offset_[i];
+          const AngVec<D> m = moment<D>(r, f);  // eq. 25 with r_rk = R b_r
           for (int a = 0; a < D; ++a) emit(k * per + static_cast<size_t>(a), f[a]);
           for (int a = 0; a < A; ++a) emit(k * per + D + static_cast<size_t>(a), m[a]);
+          // The torque r x (omega x g) of the lever g is C omega with C = (r . g) 1 - g r^T
+          // (2D: r . g).
+          const Vec<D>& g = spin_lever_[i];
+          const std::size_t c0 = k * per + D + A;
+          if constexpr (D == 2) {
+            emit(c0, r.dot(g));
+          } else {
+            for (int a = 0; a < 3; ++a)
+              for (int q = 0; q < 3; ++q)
+                emit(c0 + static_cast<size_t>(3 * a + q), (a == q ? r.dot(g) : 0.0) - g[a] * r[q]);
+          }
         }
       },
       comm);
   for (std::size_t k = 0; k < bodies_.size(); ++k) {
-    for (int a = 0; a < D; ++a) bodies_[k].fluid_force[a] = sums[k * per + static_cast<size_t>(a)];
-    for (int a = 0; a < A; ++a)
-      bodies_[k].fluid_torque[a] = sums[k * per + D + static_cast<size_t>(a)];
+    RigidBody<D>& b = bodies_[k];
+    for (int a = 0; a < D; ++a) b.fluid_force[a] = sums[k * per + static_cast<size_t>(a)];
+    for (int a = 0; a < A; ++a) b.fluid_torque[a] = sums[k * per + D + static_cast<size_t>(a)];
+    for (int a = 0; a < A * A; ++a)
+      b.spin_damping(a / A, a % A) = sums[k * per + D + A + static_cast<size_t>(a)];
+    // The pairs' torque plus the spin damping's (solver/physics/fluid_forces.h).
+    b.fluid_torque_rest = b.fluid_torque;
+    b.fluid_torque += b.spin_damping * b.omega;
   }
 }
 
@@ -324,6 +356,9 @@ void RigidBodies<D>::save(CheckpointState& st) const {
     put(st, p + "angular_momentum", b.angular_momentum);
     put(st, p + "fluid_force", b.fluid_force);
     put(st, p + "fluid_torque", b.fluid_torque);
+    put(st, p + "fluid_torque_rest", b.fluid_torque_rest);
+    for (int a = 0; a < A * A; ++a)
+      st[p + "spin_damping." + std::to_string(a)] = b.spin_damping(a / A, a % A);
     put(st, p + "contact_force", b.contact_force);
     put(st, p + "contact_torque", b.contact_torque);
     put(st, p + "acceleration", b.acceleration);
@@ -387,6 +422,14 @@ void RigidBodies<D>::load(const CheckpointState& st) {
     get(st, p + "angular_momentum", b.angular_momentum);
     get(st, p + "fluid_force", b.fluid_force);
     get(st, p + "fluid_torque", b.fluid_torque);
+    if (st.count(p + "spin_damping.0")) {
+      get(st, p + "fluid_torque_rest", b.fluid_torque_rest);
+      for (int a = 0; a < A * A; ++a)
+        b.spin_damping(a / A, a % A) = state_value(st, p + "spin_damping." + std::to_string(a));
+    } else {  // an older checkpoint: its torque had no spin damping
+      b.fluid_torque_rest = b.fluid_torque;
+      b.spin_damping.setZero();
+    }
     get(st, p + "contact_force", b.contact_force);
     get(st, p + "contact_torque", b.contact_torque);
     get(st, p + "acceleration", b.acceleration);

@@ -44,6 +44,9 @@ class RigidBodies {
   Column<Vec<D>>& offset() { return offset_; }
   Column<Vec<D>>& particle_acceleration() { return accel_; }
   Column<Vec<D>>& fluid_force() { return fluid_force_; }
+  // sum_i of the viscous factor times r_ir over each rigid particle's fluid neighbours, written
+  // with fluid_force (solver/physics/fluid_forces.h): the lever of the spin damping.
+  Column<Vec<D>>& spin_lever() { return spin_lever_; }
 
   // Mass, centre of mass and inertia from the particles (eqs. 20-23 with Remark 13); sets the
   // body-frame offsets of the owned rigid particles. Collective.
@@ -56,7 +59,8 @@ class RigidBodies {
     t_damp_ = damping_time;
   }
 
-  // Slow kick (fluid force + body force) of the free bodies by h.
+  // Slow kick (fluid force + body force) of the free bodies by h; the fluid torque's spin
+  // damping is taken at the end of the kick (backward Euler).
   void kick(double h, double t);
   // Drift by dt (no contact) and move prescribed bodies to time t + dt.
   void drift(double dt, double t_end);
@@ -66,7 +70,8 @@ class RigidBodies {
   // Velocities of the owned rigid particles from the body states (eq. 40).
   void update_owned_velocities();
   // Sums the per-particle fluid forces (eq. 19) of the owned rigid particles into body forces
-  // and torques (eqs. 24-26). Collective; identical on every rank for any decomposition.
+  // and torques (eqs. 24-26), and their spin levers into each body's spin damping. Collective;
+  // identical on every rank for any decomposition.
   void reduce_fluid_forces(const Comm& comm);
   // Accelerations for the wall condition of the next step (a = F/m + b, alpha = I^-1 (M - w x L)).
   void update_accelerations(double t);
@@ -95,6 +100,7 @@ class RigidBodies {
   Column<Vec<D>>& offset_;       // position relative to the centre of mass, body frame
   Column<Vec<D>>& accel_;        // particle acceleration (wall condition, Adami eq. 27)
   Column<Vec<D>>& fluid_force_;  // force from the fluid on each rigid particle (eq. 19)
+  Column<Vec<D>>& spin_lever_;   // see spin_lever()
   Vec<D> g_ = Vec<D>::Zero();
   double t_damp_ = 0;
 };

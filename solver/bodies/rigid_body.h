@@ -94,6 +94,14 @@ struct RigidBody {
   // (eq. 27) and the body force.
   Vec<D> fluid_force = Vec<D>::Zero(), contact_force = Vec<D>::Zero();
   AngVec<D> fluid_torque = AngVec<D>::Zero(), contact_torque = AngVec<D>::Zero();
+  // The fluid torque's part proportional to the body's own angular velocity: fluid_torque =
+  // fluid_torque_rest + spin_damping omega, omega that of the evaluation. It is the symmetric
+  // part of the viscous stress that a turning body receives (solver/physics/fluid_forces.h,
+  // compute_solid_coupling): a damping, which the kick takes implicitly so that it cannot
+  // overshoot however small the body's inertia (RigidBodies::kick).
+  Eigen::Matrix<double, D == 2 ? 1 : 3, D == 2 ? 1 : 3> spin_damping = Eigen::Matrix < double,
+                                                        D == 2 ? 1 : 3, D == 2 ? 1 : 3 > ::Zero();
+  AngVec<D> fluid_torque_rest = AngVec<D>::Zero();
   // The contact force averaged over the last fluid step (its impulse over dt). The body's
   // acceleration enters the fluid's wall condition (Adami 2012 eq. 27), which the fluid sees
   // once per step. With stiff contact the force at the end of a contact sub-step is a sample

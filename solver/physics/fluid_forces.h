@@ -25,6 +25,7 @@
 #include <cmath>
 #include <vector>
 
+#include "solver/bodies/rigid_body.h"
 #include "solver/core/neighbor_list.h"
 #include "solver/core/pair_kernel.h"
 #include "solver/physics/fluid_table.h"
@@ -48,6 +49,7 @@ struct FluidForceInputs {
   Column<Vec<D>>* background = nullptr;                // a~ (TVF)
   Column<Vec<D>>* rigid_force = nullptr;    // fluid force on each rigid particle (output)
   Column<Vec<D>>* elastic_force = nullptr;  // fluid force on each elastic particle (output)
+  Column<Vec<D>>* rigid_lever = nullptr;    // spin lever of each rigid particle (output)
   // Filled by FluidForces::run: V_j = m_j / rho_j of every particle (owned and ghosts) and
   // 2 eta_a eta_b / (eta_a + eta_b) for each pair of fluid materials (row a, column b), so
   // the pair loop divides only where the pair itself needs it.
@@ -192,6 +194,22 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
 // f_r = -sum_i m_i a_ir with a_ir exactly the term fluid particle i receives from r. The same
 // for the particles of elastic bodies (thesis eqs. 3.12-3.13 with F^{F} = -F^{S}): forces
 // equal and opposite by construction. Each kind is written only where its column is given.
+// A turning rigid body also takes the part of the viscous stress the fluid's term leaves out.
+// The viscous term (Morris 1997, Adami 2012 eq. 8) discretises mu lap(u), which is the
+// divergence of the stress mu (grad u + grad u^T) only because div u = 0 in the fluid: a
+// pair's force along v_i - v_r ~ (grad u) r_ir carries the flux mu (grad u) n across the wall,
+// not the traction mu (grad u + grad u^T) n. On a no-slip rigid wall grad u^T n equals that of
+// the body's rigid motion (its tangential derivatives and, by continuity, d u_n / dn are the
+// wall's), -omega x n, so the pair's missing part is the viscous factor times -omega x r_ir.
+// Summed over a particle's fluid neighbours that is omega x g with the lever g = sum_i of the
+// viscous factor times r_ir, written to in.rigid_lever; RigidBodies adds the torque of
+// omega x g to the body (its spin damping), not its force: over a wetted surface the part
+// adds no force (the integral of omega x n over a closed surface vanishes), and leaving its
+// discrete remainder out keeps the momentum of fluid and bodies exact. Over a fully wetted
+// body the torque is -2 mu V omega (V the body's volume), the third of the torque a turning
+// cylinder lacked in circular Couette flow (tests/validation/reports/magnus.md). The fluid
+// keeps mu lap(u): its own motion was right. Elastic bodies do not take this part: their
+// wall's spin varies along it (the solid's own velocity gradient would give it).
 template <int D, class K, bool kViscous, bool kArtVisc, bool kTransport>
 void compute_solid_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, const K& /*kernel*/,
                             const FluidForceInputs<D>& in) {
@@ -203,6 +221,8 @@ void compute_solid_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, cons
     if (!out) continue;
     Column<Vec<D>>& force = *out;
     Vec<D> f = Vec<D>::Zero();
+    const bool rigid = out == in.rigid_force;
+    Vec<D> lever = Vec<D>::Zero();
     const PairValues g = in.pairs->of(nl, r);
     const double *g_r = g.r, *g_dw = g.dw;
     for (const std::uint32_t* ip = nl.begin(r); ip != nl.fluid_end(r); ++ip, ++g_r, ++g_dw) {
@@ -222,7 +242,9 @@ void compute_solid_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, cons
       const double pr =
           dummy_pressure(in, s.p.data(), static_cast<std::uint32_t>(r), s.material[i], same);
       f -= dummy(gradW, dwdr, dist, pr, s.rho[r], same, (*in.noslip)[r], false, in.wall_volume, s2);
+      if constexpr (kViscous) lever += (s2 * fi.eta * dwdr / dist) * rij;
     }
+    if (rigid && in.rigid_lever) (*in.rigid_lever)[r] = lever;
     force[r] = f;
   }
 }

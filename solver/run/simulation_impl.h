@@ -455,6 +455,7 @@ void Simulation<D, K>::compute_fluid_forces() {
   if (bodies_) {
     Timer tc(timer("rigid_coupling"));
     in.rigid_force = &bodies_->fluid_force();
+    in.rigid_lever = &bodies_->spin_lever();
     forces_->run_coupling(s_, nl_, kernel_, in);
     bodies_->reduce_fluid_forces(comm_);
     in.rigid_force = nullptr;

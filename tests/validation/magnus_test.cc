@@ -2,10 +2,10 @@
 // cases/magnus_cylinder_2d.textproto (motion_type PRESCRIBED: held in place, turned clockwise
 // at gamma = omega D / (2 U) = 1) in a stream at Re 200, at D/dx = 5 (dx = 0.2) to t = 10 D/U.
 // Mittal & Kumar 2003 give a mean lift c_l = 2.532 at gamma = 1 (Reder Table 3). The lift
-// measured on a turning body here is well short of it at every resolution tried (the force on
-// a turning body is in doubt: tests/validation/reports/magnus.md), so the test guards the sign
-// and the order of magnitude, c_l / 2.532 in [0.25, 1.05], and that the fluid's torque opposes
-// the spin.
+// measured here is well short of it at every resolution tried, while the torque on a turning
+// body is right (tests/validation/turning_body_torque_test.cc; the flow near the turning wall
+// is in doubt: tests/validation/reports/magnus.md), so the test guards the sign and the order
+// of magnitude, c_l / 2.532 in [0.25, 1.05], and that the fluid's torque opposes the spin.
 #include <gtest/gtest.h>
 
 #include <algorithm>

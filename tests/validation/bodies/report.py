@@ -83,17 +83,24 @@ def migration(runs, out, lines):
     lines += ["## Disk migrating to the centre line of a shear flow (Fuchs 2021 Case 1, Re = 0.625)", "",
               "Released at y = H/4; the centre line is y = H/2 = 5 mm. References: Feng, Hu & Joseph 1994 (time in "
               "units of H/U_w = 0.5 s) and Feng 2002 via Hashemi 2012 (released at 3H/4, mirrored here).", "",
-              "| D/dx | final y [mm] | distance to centre line | final u_x [m/s] | final speed / wall speed | wall time |",
-              "|---|---|---|---|---|---|"]
+              "The disk's spin is compared with the torque-free rate of a free cylinder in unbounded Stokes shear, "
+              "omega = -gamma/2 = -1 rad/s (gamma = 2 U_w / H; Jeffery 1922), which inertia (Re = 0.625) and the "
+              "walls (D/H = 0.25) lower slightly.", "",
+              "| D/dx | final y [mm] | distance to centre line | final u_x [m/s] | final speed / wall speed | "
+              "omega, last 10 s [rad/s] | vs -gamma/2 | wall time |",
+              "|---|---|---|---|---|---|---|---|"]
     plt.figure(figsize=(7, 4))
     plt.plot(feng94[:, 0] * 0.5, feng94[:, 1] * H * 1e3, "k.", label="Feng, Hu & Joseph 1994")
     plt.plot(feng02[:, 0], (H - feng02[:, 1]) * 1e3, "kx", label="Feng 2002 (mirrored)")
     for name, path in runs:
         f, b = bodies(path)
         t, p, v = b["time"], b["position"][:, 0, :], b["velocity"][:, 0, :]
+        w = np.asarray(b["angular_velocity"]).reshape(len(t), -1)[:, 0]
+        w_end = float(np.mean(w[t >= t[-1] - 10]))
         dx = float(meta(f, "dx"))
         lines.append(f"| {0.0025 / dx:.2f} | {p[-1, 1] * 1e3:.3f} | {100 * abs(p[-1, 1] - H / 2) / H:.2f}% of H | "
-                     f"{v[-1, 0]:+.1e} | {np.hypot(*v[-1]) / 0.01:.1e} | {wall_seconds(path):.0f} s |")
+                     f"{v[-1, 0]:+.1e} | {np.hypot(*v[-1]) / 0.01:.1e} | {w_end:.4f} | {100 * (w_end / -1.0 - 1):+.1f}% | "
+                     f"{wall_seconds(path):.0f} s |")
         plt.plot(t, p[:, 1] * 1e3, label=f"sphd D/dx = {0.0025 / dx:.2f}")
     plt.axhline(5, color="gray", lw=0.5)
     plt.xlabel("t [s]")

@@ -69,4 +69,23 @@ if [ ! -f "$out/couette_rigid/result.h5" ]; then
   nice -n 5 "$build/worker/sph-worker" --case "$out/couette_rigid.textproto" --out "$out/couette_rigid" \
     --quiet 2>&1 | grep -E "^(completed|unstable|error)" || true
 fi
+# A free body spun by its fluid: the ring turned, the cylinder pinned and free to turn, the
+# fluid at rest at t = 0; the cylinder should end turning with the ring (12 s).
+if [ ! -f "$out/couette_pinned/result.h5" ]; then
+  /usr/bin/python3 - "$root/tests/validation/magnus/rotating_couette_2d.textproto" \
+    "$out/couette_pinned.textproto" <<'PY'
+import sys
+s = open(sys.argv[1]).read()
+turned = "  motion { angular_velocity { constant: -2 } }\n"
+s = s.replace("motion_type: PRESCRIBED\n  shape { ball { radius: 0.5 } }\n" + turned,
+              "motion_type: PINNED\n  shape { ball { radius: 0.5 } }\n")
+s = s.replace("motion_type: FIXED\n  shape { shell { inner { ball { radius: 1 } } } }\n",
+              "motion_type: PRESCRIBED\n  shape { shell { inner { ball { radius: 1 } } } }\n" + turned)
+s = s.replace("end_time: 8", "end_time: 12").replace("interval: 8", "interval: 12")
+assert "PINNED" in s and s.count("angular_velocity") == 1, "rotating_couette_2d changed"
+open(sys.argv[2], "w").write(s)
+PY
+  nice -n 5 "$build/worker/sph-worker" --case "$out/couette_pinned.textproto" --out "$out/couette_pinned" \
+    --quiet 2>&1 | grep -E "^(completed|unstable|error)" || true
+fi
 /usr/bin/python3 "$root/tests/validation/magnus/magnus_report.py" "$out" "$root/tests/validation/reports"
