@@ -276,7 +276,7 @@ def main():
             "What is left in rigid rotation, and the 4% by which a free cylinder overshoots (below),",
             "is the slip of eq. 23 at a turning wall. The fluid's mean velocity v~ belongs to the",
             "fluid's mean position, about two spacings out, not to the dummy. Both halve from",
-            "R1/dx = 10 to 20 (rigid rotation -0.0097 / 0.0264, the free cylinder +2.2%). Mirroring",
+            "R1/dx = 10 to 20 (rigid rotation -0.0097 / 0.0264, the free cylinder +2.3%). Mirroring",
             "v~ about the body's rigid velocity at that position (v_w' = 2 v_w - v~ + omega x",
             "(r~ - x_w)) removes both (rigid rotation -0.0003 / 0.0014, the free cylinder within",
             "0.2%). It was not kept: it raises the ring's Couette torque to +8.6% (+4.0% at R1/dx =",
