@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "tests/support/result_reader.h"
 #include "tests/support/test_cases.h"
@@ -26,6 +27,27 @@ namespace sph {
 namespace {
 
 constexpr double kR1 = 0.5, kR2 = 1.0, kOmega = -2.0, kMu = 0.05;
+
+// The mean of each body's value (cylinder, ring) of a 2D body series over t >= t0, and the
+// number of samples.
+struct BodyMeans {
+  double cylinder = 0, ring = 0;
+  int samples = 0;
+};
+BodyMeans means_from(const std::vector<double>& t, const std::vector<double>& v, double t0) {
+  BodyMeans m;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (t[k] < t0) continue;
+    m.cylinder += v[2 * k];
+    m.ring += v[2 * k + 1];
+    ++m.samples;
+  }
+  if (m.samples > 0) {
+    m.cylinder /= m.samples;
+    m.ring /= m.samples;
+  }
+  return m;
+}
 
 std::string couette_case() {
   return read_text_file(test::source_dir() +
@@ -38,17 +60,9 @@ TEST(TurningBody, CircularCouetteTorqueOnTheTurningCylinderAndTheFixedRing) {
   ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
   test::ResultReader rr(out + "/result.h5");
   const auto t = rr.series("bodies/time"), torque = rr.series("bodies/fluid_torque");
-  double cylinder = 0, ring = 0;
-  int n = 0;
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    if (t[k] < 6) continue;  // steady from t ~ (R2 - R1)^2 / nu = 5
-    cylinder += torque[2 * k];
-    ring += torque[2 * k + 1];
-    ++n;
-  }
-  ASSERT_GT(n, 20);
-  cylinder /= n;
-  ring /= n;
+  const BodyMeans m = means_from(t, torque, 6);  // steady from t ~ (R2 - R1)^2 / nu = 5
+  ASSERT_GT(m.samples, 20);
+  const double cylinder = m.cylinder, ring = m.ring;
   const double ref =
       4 * M_PI * kMu * std::abs(kOmega) * kR1 * kR1 * kR2 * kR2 / (kR2 * kR2 - kR1 * kR1);
   // The fluid brakes the cylinder (torque against omega < 0: positive) and drags the ring
@@ -99,17 +113,9 @@ TEST(TurningBody, APinnedCylinderEndsTurningWithItsRing) {
   ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
   test::ResultReader rr(out + "/result.h5");
   const auto t = rr.series("bodies/time"), w = rr.series("bodies/angular_velocity");
-  double cylinder = 0, ring = 0;
-  int n = 0;
-  for (std::size_t k = 0; k < t.size(); ++k) {
-    if (t[k] < 7) continue;
-    cylinder += w[2 * k];
-    ring += w[2 * k + 1];
-    ++n;
-  }
-  ASSERT_GT(n, 10);
-  cylinder /= n;
-  ring /= n;
+  const BodyMeans m = means_from(t, w, 7);
+  ASSERT_GT(m.samples, 10);
+  const double cylinder = m.cylinder, ring = m.ring;
   const double err = cylinder / ring - 1;
   std::printf(
       "pinned cylinder spun by its fluid, R1/dx = 10, 7 <= t <= 8: omega %.4f, ring %.4f "
