@@ -297,6 +297,19 @@ def main():
             "runs this to t = 8, and `TurningBody.CircularCouetteTorqueOnTheTurningCylinderAndTheFixedRing`",
             "the Couette flow at R1/dx = 10.",
         ]
+    spheres = os.path.join(out, "spheres_3d", "result.h5")
+    if os.path.isfile(spheres):
+        b = h5py.File(spheres, "r")["/series/bodies"]
+        t = b["time"][:]
+        tq = b["fluid_torque"][:].reshape(len(t), 2, 3)[t >= 4].mean(axis=0)[:, 2]
+        ref = 8 * np.pi * 0.05 * 2 * 0.5**3 / (1 - 0.5**3)
+        lines += [
+            "",
+            "In 3D (`rotating_spheres_3d.textproto`: a sphere of radius 0.5 turned at omega = -2",
+            "about z inside a fixed spherical shell of radius 1, nu = 0.05, a/dx = 5, 4 <= t <= 5)",
+            "the sphere takes %.4f (%s) and the shell %.4f (%s) of the Stokes torque" % (tq[0], rel(tq[0], ref), -tq[1], rel(-tq[1], ref)),
+            "8 pi mu omega a^3 b^3 / (b^3 - a^3) = %.4f; before the fix the sphere took 0.2709 (-24.6%%)." % ref,
+        ]
     lines += [
         "",
         "![lift and drag](magnus.png)",

@@ -88,4 +88,9 @@ PY
   nice -n 5 "$build/worker/sph-worker" --case "$out/couette_pinned.textproto" --out "$out/couette_pinned" \
     --quiet 2>&1 | grep -E "^(completed|unstable|error)" || true
 fi
+# The 3D check: a turning sphere inside a fixed spherical shell (about 30 s).
+if [ ! -f "$out/spheres_3d/result.h5" ]; then
+  nice -n 5 "$build/worker/sph-worker" --case "$root/tests/validation/magnus/rotating_spheres_3d.textproto" \
+    --out "$out/spheres_3d" --quiet 2>&1 | grep -E "^(completed|unstable|error)" || true
+fi
 /usr/bin/python3 "$root/tests/validation/magnus/magnus_report.py" "$out" "$root/tests/validation/reports"
