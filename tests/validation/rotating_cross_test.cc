@@ -20,7 +20,7 @@ TEST(RotatingCross, TheFlowTurnsThePinnedCrossBack) {
   // Twice the spacing: walls and buffers grow to the kernel support (3 dx = 0.6).
   ASSERT_GT(test::replace_all(s, "dx: 0.1\n", "dx: 0.2\n"), 0);
   ASSERT_GT(test::replace_all(s, "-3.3", "-3.6"), 0);
-  ASSERT_GT(test::replace_all(s, "9.3", "9.6"), 0);
+  ASSERT_GT(test::replace_all(s, "12.3", "12.6"), 0);
   ASSERT_GT(test::replace_all(s, "y: 3.3 ", "y: 3.6 "), 0);
   ASSERT_GT(test::replace_all(s, "end_time: 30", "end_time: 5"), 0);
   ASSERT_GT(test::replace_all(s, "output { interval: 1 ", "output { interval: 0 "), 0);

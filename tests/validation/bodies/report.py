@@ -102,6 +102,13 @@ def migration(runs, out, lines):
                      f"{v[-1, 0]:+.1e} | {np.hypot(*v[-1]) / 0.01:.1e} | {w_end:.4f} | {100 * (w_end / -1.0 - 1):+.1f}% | "
                      f"{wall_seconds(path):.0f} s |")
         plt.plot(t, p[:, 1] * 1e3, label=f"sphd D/dx = {0.0025 / dx:.2f}")
+    lines += ["",
+              "Before 2026-11-28 a turning body lacked the torque of the symmetric part of the viscous stress "
+              "(tests/validation/reports/magnus.md): the D/dx = 6.25 run turned the disk at -1.60 rad/s (+60%) and "
+              "reached the centre line with the references (y = 3.33 mm at t = 10, 4.939 mm at t = 60). Turning at "
+              "the right rate, the disk at D/dx = 6.25 migrates more slowly (3.10 mm at t = 10, against about 3.5 "
+              "for Feng et al.), and at D/dx = 12.5 it follows the references (plot). So the over-spin had made up "
+              "for the weak lateral force of the coarse run."]
     plt.axhline(5, color="gray", lw=0.5)
     plt.xlabel("t [s]")
     plt.ylabel("y of disk centre [mm]")
