@@ -1,4 +1,6 @@
 // Walls.
+#include <algorithm>
+
 #include "case/time_function.h"
 #include "case/validate/validator.h"
 
@@ -30,6 +32,30 @@ void Validator::wall(const v1::Wall& w, const std::string& f) {
   if (w.has_growth_speed()) growth_speed(w, cat(f, "growth_speed"), shape_ok);
 }
 
+namespace {
+// Whether a shape has a surface a front can grow from: explicit points have none (their
+// distance is "far" everywhere, case/geometry.cc), so neither has a union of point sets, an
+// intersection with one, or a difference or shell built on one.
+bool has_surface(const v1::Shape& s) {
+  switch (s.kind_case()) {
+    case v1::Shape::kPoints:
+      return false;
+    case v1::Shape::kUnion:
+      return std::any_of(s.union_().shapes().begin(), s.union_().shapes().end(), has_surface);
+    case v1::Shape::kIntersection:
+      return !s.intersection().shapes().empty() &&
+             std::all_of(s.intersection().shapes().begin(), s.intersection().shapes().end(),
+                         has_surface);
+    case v1::Shape::kDifference:
+      return has_surface(s.difference().base());
+    case v1::Shape::kShell:
+      return has_surface(s.shell().inner());
+    default:
+      return true;  // a primitive (a missing kind is reported on its own)
+  }
+}
+}  // namespace
+
 // A growing wall (solver/boundaries/wall_growth.h) converts the fluid its front passes; the
 // front never moves back, so the speed must be >= 0 at every time.
 void Validator::growth_speed(const v1::Wall& w, const std::string& f, bool shape_ok) {
@@ -37,7 +63,7 @@ void Validator::growth_speed(const v1::Wall& w, const std::string& f, bool shape
   const std::size_t before = errors_.size();
   time_function(g, f);
   if (w.has_motion()) error(f, "a growing wall cannot move (remove `motion` or `growth_speed`)");
-  if (w.shape().has_points())
+  if (!has_surface(w.shape()))
     error(f, "a wall of explicit points has no surface to grow from (give it a shape)");
   switch (g.kind_case()) {
     case v1::TimeFunction::kConstant:

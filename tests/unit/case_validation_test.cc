@@ -535,6 +535,15 @@ TEST(CaseValidation, GrowingWallSpeedIsNonNegativeAndTheWallStill) {
   errs = errors_of(
       R"(walls { name: "dots" shape { points { points { x: 1 y: 0.45 } } } growth_speed { constant: 0.1 } })");
   EXPECT_TRUE(has_error(errs, "walls[0].growth_speed", "no surface to grow from")) << dump(errs);
+  // Nested: a union of point sets has no surface either; a union with a box has.
+  const std::string dots = "shapes { points { points { x: 1 y: 0.45 } } }";
+  errs = errors_of(R"(walls { name: "dots" shape { union { )" + dots + " " + dots +
+                   R"( } } growth_speed { constant: 0.1 } })");
+  EXPECT_TRUE(has_error(errs, "walls[0].growth_speed", "no surface to grow from")) << dump(errs);
+  errs = errors_of(R"(walls { name: "dots" shape { union { )" + dots +
+                   R"( shapes { box { lo { x: 0.9 y: 0.4 } hi { x: 1.1 y: 0.5 } } } } })"
+                   R"( growth_speed { constant: 0.1 } })");
+  EXPECT_FALSE(has_error(errs, "walls[0].growth_speed", "no surface to grow from")) << dump(errs);
 }
 
 // A growing wall must keep clear of open-boundary buffers, as far as it grows by the end time.
