@@ -542,6 +542,11 @@ void SurfaceTension<D>::smoothed_curvature_and_force(StepContext<D>& ctx) {
     if (normal[i].isZero()) continue;
     const double self = gnorm[i] * m[i] / rho[i] * self_weight_;
     double sum = self * raw[i], weight = self;
+    // At a wall, also the mean normal over i and its neighbours with one, weighted as the
+    // curvature (|G_j| V_j W_ij): it gives the apparent angle.
+    const bool at_wall = !(*solid_gradient_)[i].isZero();
+    Vec<D> mean = Vec<D>::Zero();
+    if (at_wall) mean = self * normal[i].normalized();
     const PairValues pv = ctx.pairs.of(nl, i);
     const double* g_w = pv.w;
     for (const std::uint32_t* jp = nl.begin(i); jp != nl.fluid_end(i); ++jp, ++g_w) {
@@ -550,21 +555,12 @@ void SurfaceTension<D>::smoothed_curvature_and_force(StepContext<D>& ctx) {
       const double wj = gnorm[j] * m[j] / rho[j] * *g_w;
       sum += wj * raw[j];
       weight += wj;
+      if (at_wall) mean += wj * normal[j].normalized();
     }
     const double kappa = sum / weight;
     curvature_[i] = kappa;
     s.a[i] += (kappa / rho[i]) * gradient_[i];  // forces accumulate (solver/seam/unit.h)
-    if ((*solid_gradient_)[i].isZero()) continue;
-    // The apparent angle from the mean normal over i and its neighbours with one, weighted as
-    // the curvature (|G_j| V_j W_ij).
-    Vec<D> mean = self * normal[i].normalized();
-    g_w = pv.w;
-    for (const std::uint32_t* jp = nl.begin(i); jp != nl.fluid_end(i); ++jp, ++g_w) {
-      const std::uint32_t j = *jp;
-      if (normal[j].isZero()) continue;
-      mean += (gnorm[j] * m[j] / rho[j] * *g_w) * normal[j].normalized();
-    }
-    contact_line_force(s, i, mean);
+    if (at_wall) contact_line_force(s, i, mean);
   }
 }
 
