@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "case/validate.h"
+#include "tests/support/growing_floor.h"
 #include "tests/support/plastic_bar.h"
 #include "tests/support/result_reader.h"
 #include "tests/support/test_cases.h"
@@ -1153,24 +1154,12 @@ TEST(RankConsistency, ParticleShiftingAcrossRanksAndResume) {
 // resumed on 1 and 4 ranks from a checkpoint at step 600 (the emptied body slot and the
 // grown totals in it).
 v1::Case floor_growing_under_a_disk() {
-  return parse_case_text(R"(
-    name: "growing_floor"
-    dimension: 2
-    dx: 0.04
-    domain { lo { x: 0 y: -0.12 } hi { x: 0.4 y: 1.12 } }
-    periodic_x: true
-    materials { name: "water" density: 1 eos { kind: LINEAR sound_speed: 10 } dynamic_viscosity: 0.01 }
-    materials { name: "solid" phase: SOLID density: 1 }
-    fluids { name: "f" material: "water" shape { box { lo { x: 0 y: 0 } hi { x: 0.4 y: 1 } } } }
-    walls { name: "floor" shape { box { lo { x: 0 y: -0.12 } hi { x: 0.4 y: 0 } } }
-            growth_speed { constant: 0.4 } }
-    walls { name: "lid" shape { box { lo { x: 0 y: 1 } hi { x: 0.4 y: 1.12 } } } }
+  v1::Case c = parse_case_text(test::growing_floor(0.4, 10, R"(
     bodies { name: "disk" material: "solid" shape { ball { center { x: 0.2 y: 0.3 } radius: 0.1 } } }
     contact { model: RESTITUTION restitution: 0 }
-    body_force { x: 1 }
-    fluid_model { density: SUMMATION }
-    time { end_time: 10 }
-    output { series_interval: 1e-12 })");
+    body_force { x: 1 })"));
+  c.mutable_output()->set_series_interval(1e-12);
+  return c;
 }
 
 TEST(RankConsistency, GrowingWallEngulfingADiskAcrossRanksAndResume) {

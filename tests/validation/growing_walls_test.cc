@@ -12,33 +12,12 @@
 #include <vector>
 
 #include "case/load.h"
+#include "tests/support/growing_floor.h"
 #include "tests/support/result_reader.h"
 #include "tests/support/test_cases.h"
 
 namespace sph {
 namespace {
-
-// Periodic in x over 0.4, still fluid between a floor growing at `speed` and a lid, dx = 0.04.
-std::string growing_floor(double speed, double end_time, const std::string& extra = "") {
-  return R"(
-name: "growing_floor"
-dimension: 2
-dx: 0.04
-domain { lo { x: 0 y: -0.12 } hi { x: 0.4 y: 1.12 } }
-periodic_x: true
-materials { name: "water" density: 1 eos { kind: LINEAR sound_speed: 10 } dynamic_viscosity: 0.01 }
-materials { name: "solid" phase: SOLID density: 1 }
-fluids { name: "f" material: "water" shape { box { lo { x: 0 y: 0 } hi { x: 0.4 y: 1 } } } }
-walls { name: "floor" shape { box { lo { x: 0 y: -0.12 } hi { x: 0.4 y: 0 } } }
-        growth_speed { constant: )" +
-         std::to_string(speed) + R"( } }
-walls { name: "lid" shape { box { lo { x: 0 y: 1 } hi { x: 0.4 y: 1.12 } } } }
-fluid_model { density: SUMMATION }
-time { end_time: )" +
-         std::to_string(end_time) + R"( }
-output { interval: 0 series_interval: 0.01 }
-)" + extra;
-}
 
 // The front from the particles a growing wall took: the times at which half of the k-th
 // layer has gone (the front then stands at that layer's centre, (k - 1/2) dx from the initial
@@ -124,7 +103,7 @@ Front measure_front(const test::ResultReader& rr, double v, double dx, double wi
 TEST(GrowingWalls, AFlatWallAdvancesAtItsSpeedAndConservesMass) {
   const double v = 0.2, dx = 0.04;
   const std::string out = test::output_dir("growing_floor");
-  const RunOutcome r = test::run(parse_case_text(growing_floor(v, 2.0)), out);
+  const RunOutcome r = test::run(parse_case_text(test::growing_floor(v, 2.0)), out);
   ASSERT_EQ(r.status, RunStatus::kCompleted) << r.message;
   test::ResultReader rr(out + "/result.h5");
   const double m0 = rr.series("diagnostics/mass").front();
@@ -151,7 +130,7 @@ TEST(GrowingWalls, TheFrontEngulfsADiskItReaches) {
   const double v = 0.4;
   const std::string out = test::output_dir("growing_floor_disk");
   const RunOutcome r = test::run(
-      parse_case_text(growing_floor(
+      parse_case_text(test::growing_floor(
           v, 0.8,
           R"(bodies { name: "disk" material: "solid" shape { ball { center { x: 0.2 y: 0.3 } radius: 0.1 } } })")),
       out);
