@@ -20,6 +20,8 @@ namespace sph {
 
 template <int D>
 using AngVec = Eigen::Matrix<double, D == 2 ? 1 : 3, 1>;  // angular quantities
+template <int D>
+using AngMat = Eigen::Matrix<double, D == 2 ? 1 : 3, D == 2 ? 1 : 3>;  // their linear maps
 
 // kPinned: translation fixed at the centre of mass, rotation free (Reder et al. 2021 sec. 3.3);
 // kPrescribedRotation: rotation about the centre of mass prescribed, translation free.
@@ -99,8 +101,7 @@ struct RigidBody {
   // part of the viscous stress that a turning body receives (solver/physics/fluid_forces.h,
   // compute_solid_coupling): a damping, which the kick takes implicitly so that it cannot
   // overshoot however small the body's inertia (RigidBodies::kick).
-  Eigen::Matrix<double, D == 2 ? 1 : 3, D == 2 ? 1 : 3> spin_damping = Eigen::Matrix < double,
-                                                        D == 2 ? 1 : 3, D == 2 ? 1 : 3 > ::Zero();
+  AngMat<D> spin_damping = AngMat<D>::Zero();
   AngVec<D> fluid_torque_rest = AngVec<D>::Zero();
   // The contact force averaged over the last fluid step (its impulse over dt). The body's
   // acceleration enters the fluid's wall condition (Adami 2012 eq. 27), which the fluid sees

@@ -25,7 +25,6 @@
 #include <cmath>
 #include <vector>
 
-#include "solver/bodies/rigid_body.h"
 #include "solver/core/neighbor_list.h"
 #include "solver/core/pair_kernel.h"
 #include "solver/physics/fluid_table.h"
@@ -200,11 +199,11 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
 // pair's force along v_i - v_r ~ (grad u) r_ir carries the flux mu (grad u) n across the wall,
 // not the traction mu (grad u + grad u^T) n. On a no-slip rigid wall grad u^T n equals that of
 // the body's rigid motion (its tangential derivatives and, by continuity, d u_n / dn are the
-// wall's), -omega x n, so the pair's missing part is the viscous factor times -omega x r_ir.
-// Summed over a particle's fluid neighbours that is omega x g with the lever g = sum_i of the
-// viscous factor times r_ir, written to in.rigid_lever; RigidBodies adds the torque of
-// omega x g to the body (its spin damping), not its force: over a wetted surface the part
-// adds no force (the integral of omega x n over a closed surface vanishes), and leaving its
+// wall's), -omega x n, so the pair's missing part is -(V_i^2 + V_r^2) eta W'_ir / r_ir times
+// omega x r_ir. Summed over a particle's fluid neighbours that is omega x g, with the lever
+// g = sum_i (V_i^2 + V_r^2) eta W'_ir / r_ir r_ir written to in.rigid_lever. RigidBodies adds
+// the torque of omega x g to the body (its spin damping), not its force: over a wetted surface
+// the part adds no force (omega x n integrates to zero over a closed surface), and leaving its
 // discrete remainder out keeps the momentum of fluid and bodies exact. Over a fully wetted
 // body the torque is -2 mu V omega (V the body's volume), the third of the torque a turning
 // cylinder lacked in circular Couette flow (tests/validation/reports/magnus.md). The fluid
