@@ -241,7 +241,9 @@ void compute_solid_coupling(ParticleStore<D>& s, const NeighborList<D>& nl, cons
       const double pr =
           dummy_pressure(in, s.p.data(), static_cast<std::uint32_t>(r), s.material[i], same);
       f -= dummy(gradW, dwdr, dist, pr, s.rho[r], same, (*in.noslip)[r], false, in.wall_volume, s2);
-      if constexpr (kViscous) lever += (s2 * fi.eta * dwdr / dist) * rij;
+      if constexpr (kViscous) {
+        if (rigid) lever += (s2 * fi.eta * dwdr / dist) * rij;
+      }
     }
     if (rigid && in.rigid_lever) (*in.rigid_lever)[r] = lever;
     force[r] = f;
