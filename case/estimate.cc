@@ -280,8 +280,8 @@ CaseEstimate estimate_case(const v1::Case& c) {
     e.steps = std::min(e.steps, static_cast<double>(c.time().max_steps()));
 
   // Storage: particle columns (~40 doubles in 3D) plus a neighbour index per pair and, with
-  // the pair kernel table, r, W and dW per pair (in double by default, single precision with
-  // PAIR_KERNEL_COMPACT); about 15% ghost copies.
+  // the pair kernel table, r, W and dW per pair in double by default (W and dW / r in single
+  // precision with PAIR_KERNEL_COMPACT); about 15% ghost copies.
   const double k = rc_over_dx;
   const double neighbours =
       d == 2 ? std::numbers::pi * k * k : 4.0 / 3.0 * std::numbers::pi * k * k * k;
@@ -291,7 +291,7 @@ CaseEstimate estimate_case(const v1::Case& c) {
   const double per_index =
       4.0 * 1.25 * (skin > 0 ? 1.0 + std::pow(1.0 + skin / kernel_support_radius(c), d) : 1.0);
   const double per_value = c.pair_kernel_storage() == v1::PAIR_KERNEL_STREAM    ? 0.0
-                           : c.pair_kernel_storage() == v1::PAIR_KERNEL_COMPACT ? 12.0
+                           : c.pair_kernel_storage() == v1::PAIR_KERNEL_COMPACT ? 8.0
                                                                                 : 24.0;
   const double per_pair = per_index + 1.25 * per_value;
   const double per_particle = (d == 2 ? 200.0 : 280.0) + per_pair * neighbours;

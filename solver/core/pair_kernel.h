@@ -11,11 +11,13 @@
 //  - kTable (the default): every pair evaluated once when the list is built and r, W and
 //    dW/dr kept in double (24 bytes a pair), the values the passes computed before the table
 //    existed, to the bit.
-//  - kCompact: r, W and dW/dr kept in single precision (12 bytes a pair); each pass gets a
-//    particle's values widened to double (about 1 ns a pair and pass: 4-15% of a step,
-//    docs/effects.md). Each value carries a relative rounding of at most 2^-24 (6e-8; with
-//    Verlet lists W and dW/dr are those of the distance from the single-precision square),
-//    far below the discretisation error and the same on every rank count.
+//  - kCompact: W and (dW/dr) / r kept in single precision (8 bytes a pair), the two values the
+//    fluid forces read (grad W_ij = (dW/dr / r) x_ij, and r is |x_ij| where a pass needs it),
+//    which read them as they are (compact_of). Other passes get a particle's values in double
+//    (of()): r from the positions, W widened, dW/dr = ((dW/dr) / r) r. Each value carries a
+//    relative rounding of at most 2^-24 (6e-8; with Verlet lists W and dW/dr are those of the
+//    distance from the single-precision square), far below the discretisation error and the
+//    same on every rank count.
 //  - kStream: a particle's pairs evaluated into a scratch buffer each time a pass asks for
 //    them; no storage, each pass gathers and evaluates again. The same bits as kTable.
 #include <algorithm>
@@ -36,6 +38,12 @@ struct PairValues {
   const double* dw;
 };
 
+// The compact table's values of one particle's pairs: W and (dW/dr) / r.
+struct CompactPairValues {
+  const float* w;
+  const float* dw_r;
+};
+
 template <int D>
 class PairKernel {
  public:
@@ -54,9 +62,8 @@ class PairKernel {
       for (std::size_t i = 0; i < s.owned(); ++i) distances(nl, i, r_.data() + nl.first(i));
       evaluate_table(n, k);
     } else if (storage_ == Storage::kCompact) {
-      fit(r32_, n);
       fit(w32_, n);
-      fit(dw32_, n);
+      fit(dwr32_, n);
       for (std::size_t i = 0; i < s.owned(); ++i) {
         const auto len = static_cast<std::size_t>(nl.end(i) - nl.begin(i));
         grow_scratch(len);
@@ -70,12 +77,12 @@ class PairKernel {
   // Verlet lists: nl.refine() keeping the squared distances it computes as it tests the
   // candidates, so that prepare_refined() takes them instead of gathering the positions of
   // every pair a second time (about a third of prepare() in the 3D powder box). kCompact keeps
-  // them in single precision where prepare_refined() then writes the distances.
+  // them in single precision where prepare_refined() then writes (dW/dr) / r.
   void refine(NeighborList<D>& nl, const ParticleStore<D>& s, double rc, double contact_range) {
     if (storage_ == Storage::kTable)
       nl.refine(s, rc, contact_range, r_);
     else if (storage_ == Storage::kCompact)
-      nl.refine(s, rc, contact_range, r32_);
+      nl.refine(s, rc, contact_range, dwr32_);
     else
       nl.refine(s, rc, contact_range);
     filled_by_ = storage_ == Storage::kStream ? kNone : nl.generation();
@@ -95,13 +102,13 @@ class PairKernel {
       return;
     }
     fit(w32_, n);
-    fit(dw32_, n);
-    // In blocks, so that the double scratch stays small and in cache.
+    // In blocks, so that the double scratch stays small and in cache. Each block's squared
+    // distances are read before its values are written over them.
     constexpr std::size_t kBlock = 512;
     grow_scratch(kBlock);
     for (std::size_t e0 = 0; e0 < n; e0 += kBlock) {
       const std::size_t len = std::min(kBlock, n - e0);
-      for (std::size_t e = 0; e < len; ++e) r_[e] = std::sqrt(static_cast<double>(r32_[e0 + e]));
+      for (std::size_t e = 0; e < len; ++e) r_[e] = std::sqrt(static_cast<double>(dwr32_[e0 + e]));
       k.evaluate(len, r_.data(), w_.data(), dw_.data());
       round_into(len, e0);
     }
@@ -119,15 +126,25 @@ class PairKernel {
     grow_scratch(n);
     if (storage_ == Storage::kCompact) {
       const std::size_t e0 = nl.first(i);
-      widen(r32_.data() + e0, r_.data(), n);
+      distances(nl, i, r_.data());
       widen(w32_.data() + e0, w_.data(), n);
-      widen(dw32_.data() + e0, dw_.data(), n);
+      const float* dwr = dwr32_.data() + e0;
+      for (std::size_t e = 0; e < n; ++e) dw_[e] = static_cast<double>(dwr[e]) * r_[e];
     } else {
       distances(nl, i, r_.data());
       evaluate_(kernel_, n, r_.data(), w_.data(), dw_.data());
     }
     return {r_.data(), w_.data(), dw_.data()};
   }
+
+  // The compact table's own values of particle i's pairs, for the passes that read single
+  // precision directly (the fluid forces). kCompact only.
+  CompactPairValues compact_of(const NeighborList<D>& nl, std::size_t i) const {
+    check_fresh(nl);
+    const std::size_t e = nl.first(i);
+    return {w32_.data() + e, dwr32_.data() + e};
+  }
+  bool compact() const { return storage_ == Storage::kCompact; }
 
   // W of particle i's pairs alone, for the passes that read no more (density, the wall
   // condition's weights): kCompact widens only them.
@@ -142,7 +159,7 @@ class PairKernel {
 
   std::size_t bytes() const {
     return (r_.capacity() + w_.capacity() + dw_.capacity()) * sizeof(double) +
-           (r32_.capacity() + w32_.capacity() + dw32_.capacity()) * sizeof(float);
+           (w32_.capacity() + dwr32_.capacity()) * sizeof(float);
   }
 
  private:
@@ -173,14 +190,16 @@ class PairKernel {
   static void widen(const float* __restrict in, double* __restrict out, std::size_t n) {
     for (std::size_t e = 0; e < n; ++e) out[e] = in[e];
   }
-  // The first n values of the double scratch into the single-precision table at e0.
+  // The first n values of the double scratch into the single-precision table at e0:
+  // W and (dW/dr) / r.
   void round_into(std::size_t n, std::size_t e0) {
-    float *r = r32_.data() + e0, *w = w32_.data() + e0, *dw = dw32_.data() + e0;
-    for (std::size_t e = 0; e < n; ++e) {
-      r[e] = static_cast<float>(r_[e]);
-      w[e] = static_cast<float>(w_[e]);
-      dw[e] = static_cast<float>(dw_[e]);
-    }
+    float* __restrict w = w32_.data() + e0, * __restrict dwr = dwr32_.data() + e0;
+    const double* __restrict r = r_.data(), * __restrict wd = w_.data(), * __restrict dw = dw_.data();
+    for (std::size_t e = 0; e < n; ++e) w[e] = static_cast<float>(wd[e]);
+    // Divided by 1 where r = 0 (dW/dr is 0 there, and the passes skip coincident particles),
+    // so that the loop divides unconditionally and vectorises.
+    for (std::size_t e = 0; e < n; ++e)
+      dwr[e] = static_cast<float>(dw[e] / (r[e] > 0.0 ? r[e] : 1.0));
   }
   // W and dW/dr of the first n distances in r_.
   template <class K>
@@ -216,10 +235,10 @@ class PairKernel {
   const void* kernel_ = nullptr;
   void (*evaluate_)(const void*, std::size_t, const double*, double*, double*) = nullptr;
   std::uint64_t generation_ = std::numeric_limits<std::uint64_t>::max();  // matches no list
-  // The generation of the list whose refine() wrote the squared distances (r_ or r32_).
+  // The generation of the list whose refine() wrote the squared distances (r_ or dwr32_).
   std::uint64_t filled_by_ = kNone;
   mutable std::vector<double> r_, w_, dw_;  // the table (kTable), or the scratch
-  std::vector<float> r32_, w32_, dw32_;     // the table (kCompact)
+  std::vector<float> w32_, dwr32_;          // the table (kCompact): W, (dW/dr) / r
 };
 
 }  // namespace sph

@@ -83,6 +83,52 @@ struct DummyPair {
   }
 };
 
+// What the fluid forces read of pair k of a particle, from the double values (table or stream:
+// r, W, dW/dr) or as the compact table keeps them (W and (dW/dr) / r in single precision,
+// read without a widened copy; r_ij^2 then from the positions). The double form computes
+// exactly what the pair loop computed before these existed.
+struct ExactPairs {
+  const double *r, *w, *dw;
+  template <class V>
+  bool coincident(std::size_t k, const V& /*rij*/) const {
+    return r[k] == 0.0;
+  }
+  double dwdr_r(std::size_t k) const { return dw[k] / r[k]; }
+  template <class V>
+  double r2(std::size_t k, const V& /*rij*/) const {
+    return r[k] * r[k];
+  }
+  double W(std::size_t k) const { return w[k]; }
+  // dW/dr and r as DummyPair takes them (it divides the one by the other).
+  double dummy_dwdr(std::size_t k) const { return dw[k]; }
+  double dummy_r(std::size_t k) const { return r[k]; }
+};
+struct CompactPairs {
+  const float *w, *dw_r;
+  template <class V>
+  bool coincident(std::size_t /*k*/, const V& rij) const {
+    return rij.squaredNorm() == 0.0;
+  }
+  double dwdr_r(std::size_t k) const { return dw_r[k]; }
+  template <class V>
+  double r2(std::size_t /*k*/, const V& rij) const {
+    return rij.squaredNorm();
+  }
+  double W(std::size_t k) const { return w[k]; }
+  double dummy_dwdr(std::size_t k) const { return dw_r[k]; }
+  double dummy_r(std::size_t /*k*/) const { return 1.0; }
+};
+template <bool kCompact, int D>
+auto pairs_of(const PairKernel<D>& pk, const NeighborList<D>& nl, std::size_t i) {
+  if constexpr (kCompact) {
+    const CompactPairValues g = pk.compact_of(nl, i);
+    return CompactPairs{g.w, g.dw_r};
+  } else {
+    const PairValues g = pk.of(nl, i);
+    return ExactPairs{g.r, g.w, g.dw};
+  }
+}
+
 // Kernel support completeness below which a particle is in the free-surface zone.
 inline constexpr double kFreeSurfaceCompleteness = 0.95;
 
@@ -96,7 +142,7 @@ inline double dummy_pressure(const FluidForceInputs<D>& in, const double* p, std
   return p[j];
 }
 
-template <int D, class K, bool kViscous, bool kArtVisc, bool kTransport>
+template <int D, class K, bool kViscous, bool kArtVisc, bool kTransport, bool kCompact>
 void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const K& k,
                           const FluidForceInputs<D>& in) {
   const auto& fl = *in.fluids;
@@ -125,16 +171,16 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
     Vec<D> dui = Vec<D>::Zero();
     if constexpr (kTransport) dui = (*in.transport)[i] - vi;
     const DummyPair<D, kViscous, kTransport> dummy{fi, rhoi, pi, Vi2, vi, dui};
-    const PairValues g = in.pairs->of(nl, i);
-    const double *g_r = g.r, *g_w = g.w, *g_dw = g.dw;
+    const auto g = pairs_of<kCompact>(*in.pairs, nl, i);
     // Fluid neighbours, then the dummies (the list keeps them apart: no test per pair).
+    const std::uint32_t* const begin = nl.begin(i);
     const std::uint32_t* const fluid_end = nl.fluid_end(i);
-    for (const std::uint32_t* jp = nl.begin(i); jp != fluid_end; ++jp, ++g_r, ++g_w, ++g_dw) {
+    for (const std::uint32_t* jp = begin; jp != fluid_end; ++jp) {
+      const auto e = static_cast<std::size_t>(jp - begin);
       const std::uint32_t j = *jp;
       const Vec<D> rij = xi - x[j];
-      const double r = *g_r;
-      if (r == 0.0) continue;
-      const double dwdr = *g_dw, dwdr_r = dwdr / r;
+      if (g.coincident(e, rij)) continue;
+      const double dwdr_r = g.dwdr_r(e);
       const Vec<D> gradW = dwdr_r * rij;
       const double rhoj = rho[j], Vj = V[j];
       const double s2 = Vi2 + Vj * Vj;
@@ -146,7 +192,7 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
       }
       if constexpr (kTransport) {
         acc_bg -= s2 * gradW;
-        sigma += Vj * *g_w;
+        sigma += Vj * g.W(e);
         grad_sum += Vj * gradW;
         const Vec<D> duj = (*in.transport)[j] - v[j];
         // 1/2 (A_i + A_j) . grad W with A = rho u (u~ - u)^T.
@@ -159,23 +205,23 @@ void compute_fluid_forces(ParticleStore<D>& s, const NeighborList<D>& nl, const 
         // grad W), applied to every pair as the paper does.
         const double vr = (vi - v[j]).dot(rij);
         const double cbar = 0.5 * (fi.c + fl[mat[j]].c), rhobar = 0.5 * (rhoi + rhoj);
-        acc_av += (m[j] * in.alpha * in.h * cbar * vr / (rhobar * (r * r + eps_h2))) * gradW;
+        acc_av += (m[j] * in.alpha * in.h * cbar * vr / (rhobar * (g.r2(e, rij) + eps_h2))) * gradW;
       }
     }
-    for (const std::uint32_t* jp = fluid_end; jp != nl.end(i); ++jp, ++g_r, ++g_w, ++g_dw) {
+    for (const std::uint32_t* jp = fluid_end; jp != nl.end(i); ++jp) {
+      const auto e = static_cast<std::size_t>(jp - begin);
       const std::uint32_t j = *jp;
-      const double r = *g_r;
-      if (r == 0.0) continue;
-      const double dwdr = *g_dw;
-      const Vec<D> gradW = (dwdr / r) * (xi - x[j]);
+      const Vec<D> rij = xi - x[j];
+      if (g.coincident(e, rij)) continue;
+      const Vec<D> gradW = g.dwdr_r(e) * rij;
       double s2 = 0;
       bool same = false;
       const double pj = dummy_pressure(in, p, j, mat[i], same);
-      acc += dummy(gradW, dwdr, r, pj, rho[j], same, (*in.noslip)[j],
+      acc += dummy(gradW, g.dummy_dwdr(e), g.dummy_r(e), pj, rho[j], same, (*in.noslip)[j],
                    in.free_slip && (*in.free_slip)[j], in.wall_volume, s2);
       if constexpr (kTransport) {
         acc_bg -= s2 * gradW;
-        sigma += in.wall_volume * *g_w;
+        sigma += in.wall_volume * g.W(e);
         grad_sum += in.wall_volume * gradW;
       }
     }
@@ -256,7 +302,8 @@ class FluidForces {
  public:
   static constexpr const char* kName = "fluid_forces";
   FluidForces(bool viscous, bool art_visc, bool transport) {
-    fn_ = pick<false, false, false>(viscous, art_visc, transport);
+    fn_ = pick<false, false, false, false>(viscous, art_visc, transport);
+    fn_compact_ = pick<false, false, false, true>(viscous, art_visc, transport);
     coupling_ = pick_coupling(viscous, transport);
   }
   void run(ParticleStore<D>& s, const NeighborList<D>& nl, const K& k,
@@ -274,7 +321,7 @@ class FluidForces {
     FluidForceInputs<D> with = in;
     with.volume = volume_.data();
     with.eta_pair = eta_pair_.data();
-    fn_(s, nl, k, with);
+    (in.pairs->compact() ? fn_compact_ : fn_)(s, nl, k, with);
   }
   // Bytes of the per-particle scratch (V_j).
   std::size_t bytes() const { return volume_.capacity() * sizeof(double); }
@@ -287,20 +334,20 @@ class FluidForces {
  private:
   using Fn = void (*)(ParticleStore<D>&, const NeighborList<D>&, const K&,
                       const FluidForceInputs<D>&);
-  template <bool V, bool A, bool T>
+  template <bool V, bool A, bool T, bool C>
   static Fn pick(bool v, bool a, bool t) {
-    if (v) return pick2<true, A, T>(a, t);
-    return pick2<false, A, T>(a, t);
+    if (v) return pick2<true, A, T, C>(a, t);
+    return pick2<false, A, T, C>(a, t);
   }
-  template <bool V, bool A, bool T>
+  template <bool V, bool A, bool T, bool C>
   static Fn pick2(bool a, bool t) {
-    if (a) return pick3<V, true, T>(t);
-    return pick3<V, false, T>(t);
+    if (a) return pick3<V, true, T, C>(t);
+    return pick3<V, false, T, C>(t);
   }
-  template <bool V, bool A, bool T>
+  template <bool V, bool A, bool T, bool C>
   static Fn pick3(bool t) {
-    if (t) return &compute_fluid_forces<D, K, V, A, true>;
-    return &compute_fluid_forces<D, K, V, A, false>;
+    if (t) return &compute_fluid_forces<D, K, V, A, true, C>;
+    return &compute_fluid_forces<D, K, V, A, false, C>;
   }
   static Fn pick_coupling(bool v, bool t) {
     if (v)
@@ -309,7 +356,7 @@ class FluidForces {
     return t ? &compute_solid_coupling<D, K, false, false, true>
              : &compute_solid_coupling<D, K, false, false, false>;
   }
-  Fn fn_, coupling_;
+  Fn fn_, fn_compact_, coupling_;
   std::vector<double> volume_, eta_pair_;
 };
 
