@@ -148,6 +148,15 @@ double kernel_support_radius(const v1::Case& c) {
   return kernel_support_factor(c) * smoothing_length(c);
 }
 
+v1::PairKernelStorage pair_kernel_storage(const v1::Case& c) {
+  if (c.pair_kernel_storage() != v1::PAIR_KERNEL_STORAGE_UNSPECIFIED)
+    return c.pair_kernel_storage();
+  const auto& fm = c.fluid_model();
+  const bool reads_r = c.has_surface_tension() || fm.has_particle_shifting() ||
+                       fm.has_riemann_dissipation() || fm.has_density_diffusion();
+  return reads_r ? v1::PAIR_KERNEL_TABLE : v1::PAIR_KERNEL_COMPACT;
+}
+
 double neighbor_skin(const v1::Case& c) {
   if (c.open_boundaries_size() > 0) return 0.0;
   double skin = (c.has_neighbor_skin() ? c.neighbor_skin() : 0.3) * c.dx();
@@ -280,8 +289,8 @@ CaseEstimate estimate_case(const v1::Case& c) {
     e.steps = std::min(e.steps, static_cast<double>(c.time().max_steps()));
 
   // Storage: particle columns (~40 doubles in 3D) plus a neighbour index per pair and, with
-  // the pair kernel table, r, W and dW per pair in double by default (W and dW / r in single
-  // precision with PAIR_KERNEL_COMPACT); about 15% ghost copies.
+  // the pair kernel table, W and dW / r per pair in single precision (compact, the default)
+  // or r, W and dW in double (PAIR_KERNEL_TABLE); about 15% ghost copies.
   const double k = rc_over_dx;
   const double neighbours =
       d == 2 ? std::numbers::pi * k * k : 4.0 / 3.0 * std::numbers::pi * k * k * k;
@@ -290,9 +299,10 @@ CaseEstimate estimate_case(const v1::Case& c) {
   const double skin = neighbor_skin(c);
   const double per_index =
       4.0 * 1.25 * (skin > 0 ? 1.0 + std::pow(1.0 + skin / kernel_support_radius(c), d) : 1.0);
-  const double per_value = c.pair_kernel_storage() == v1::PAIR_KERNEL_STREAM    ? 0.0
-                           : c.pair_kernel_storage() == v1::PAIR_KERNEL_COMPACT ? 8.0
-                                                                                : 24.0;
+  const v1::PairKernelStorage storage = pair_kernel_storage(c);
+  const double per_value = storage == v1::PAIR_KERNEL_STREAM  ? 0.0
+                           : storage == v1::PAIR_KERNEL_TABLE ? 24.0
+                                                              : 8.0;
   const double per_pair = per_index + 1.25 * per_value;
   const double per_particle = (d == 2 ? 200.0 : 280.0) + per_pair * neighbours;
   e.bytes = 1.15 * e.total() * per_particle;

@@ -8,12 +8,14 @@
 // vectorise (K::evaluate), and equal those the passes computed before to the bit
 // (r = |x_i - x_j|, K::evaluate = W and dW), so results are unchanged.
 // Three ways to keep them:
-//  - kTable (the default): every pair evaluated once when the list is built and r, W and
-//    dW/dr kept in double (24 bytes a pair), the values the passes computed before the table
-//    existed, to the bit.
-//  - kCompact: W and (dW/dr) / r kept in single precision (8 bytes a pair), the two values the
-//    fluid forces read (grad W_ij = (dW/dr / r) x_ij, and r is |x_ij| where a pass needs it),
-//    which read them as they are (compact_of). Other passes get a particle's values in double
+//  - kTable: every pair evaluated once when the list is built and r, W and dW/dr kept in
+//    double (24 bytes a pair), the values the passes computed before the table existed, to
+//    the bit.
+//  - kCompact (a case's default, case/estimate.h pair_kernel_storage()): W and (dW/dr) / r kept in
+//  single
+//    precision (8 bytes a pair), the two values the fluid forces and conduction read
+//    (grad W_ij = (dW/dr / r) x_ij), which read them as they are (compact_of,
+//    solver/core/pair_access.h). Other passes get a particle's values in double
 //    (of()): r from the positions, W widened, dW/dr = ((dW/dr) / r) r. Each value carries a
 //    relative rounding of at most 2^-24 (6e-8; with Verlet lists W and dW/dr are those of the
 //    distance from the single-precision square), far below the discretisation error and the

@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "solver/core/neighbor_list.h"
-#include "solver/core/pair_kernel.h"
+#include "solver/core/pair_access.h"
 #include "solver/physics/fluid_table.h"
 
 namespace sph {
@@ -82,52 +82,6 @@ struct DummyPair {
     return acc;
   }
 };
-
-// What the fluid forces read of pair k of a particle, from the double values (table or stream:
-// r, W, dW/dr) or as the compact table keeps them (W and (dW/dr) / r in single precision,
-// read without a widened copy; r_ij^2 then from the positions). The double form computes
-// exactly what the pair loop computed before these existed.
-struct ExactPairs {
-  const double *r, *w, *dw;
-  template <class V>
-  bool coincident(std::size_t k, const V& /*rij*/) const {
-    return r[k] == 0.0;
-  }
-  double dwdr_r(std::size_t k) const { return dw[k] / r[k]; }
-  template <class V>
-  double r2(std::size_t k, const V& /*rij*/) const {
-    return r[k] * r[k];
-  }
-  double W(std::size_t k) const { return w[k]; }
-  // dW/dr and r as DummyPair takes them (it divides the one by the other).
-  double dummy_dwdr(std::size_t k) const { return dw[k]; }
-  double dummy_r(std::size_t k) const { return r[k]; }
-};
-struct CompactPairs {
-  const float *w, *dw_r;
-  template <class V>
-  bool coincident(std::size_t /*k*/, const V& rij) const {
-    return rij.squaredNorm() == 0.0;
-  }
-  double dwdr_r(std::size_t k) const { return dw_r[k]; }
-  template <class V>
-  double r2(std::size_t /*k*/, const V& rij) const {
-    return rij.squaredNorm();
-  }
-  double W(std::size_t k) const { return w[k]; }
-  double dummy_dwdr(std::size_t k) const { return dw_r[k]; }
-  double dummy_r(std::size_t /*k*/) const { return 1.0; }
-};
-template <bool kCompact, int D>
-auto pairs_of(const PairKernel<D>& pk, const NeighborList<D>& nl, std::size_t i) {
-  if constexpr (kCompact) {
-    const CompactPairValues g = pk.compact_of(nl, i);
-    return CompactPairs{g.w, g.dw_r};
-  } else {
-    const PairValues g = pk.of(nl, i);
-    return ExactPairs{g.r, g.w, g.dw};
-  }
-}
 
 // Kernel support completeness below which a particle is in the free-surface zone.
 inline constexpr double kFreeSurfaceCompleteness = 0.95;

@@ -46,7 +46,7 @@
 
 #include "case/time_function.h"
 #include "solver/core/neighbor_list.h"
-#include "solver/core/pair_kernel.h"
+#include "solver/core/pair_access.h"
 
 namespace sph {
 
@@ -146,6 +146,23 @@ class ScalarDiffusion {
   // particle belongs to (ghosts included).
   void run(const NeighborList<D>& nl, const PairKernel<D>& pk, double dt,
            const Column<std::uint16_t>& wall_index) {
+    if (pk.compact())
+      advance<true>(nl, pk, dt, wall_index);
+    else
+      advance<false>(nl, pk, dt, wall_index);
+  }
+
+  // Bytes of the unit's per-particle scratch (the value column is counted with the store).
+  std::size_t bytes() const {
+    return rate_.capacity() * sizeof(double) + volume_.capacity() * sizeof(double) +
+           class_.capacity() * sizeof(std::uint16_t);
+  }
+
+ private:
+  // The pass of run() for one form of the pair values.
+  template <bool kCompact>
+  void advance(const NeighborList<D>& nl, const PairKernel<D>& pk, double dt,
+               const Column<std::uint16_t>& wall_index) {
     gather(wall_index);
     const std::size_t n = s_.owned(), nm = mats_.size(), nc = nm + walls_.size();
     const double* value = value_.data();
@@ -162,18 +179,19 @@ class ScalarDiffusion {
       const double* coef = pair_coefficient_.data() + mat_a * nc;
       const double va = value[a];
       double sum = 0;
-      const PairValues g = pk.of(nl, a);
-      const double *g_r = g.r, *g_dw = g.dw;
+      const auto g = pairs_of<kCompact>(pk, nl, a);
       // The fluid neighbours come first and are never walls.
+      const std::uint32_t* const begin = nl.begin(a);
       const std::uint32_t* const fluid_end = nl.fluid_end(a);
-      for (const std::uint32_t* bp = nl.begin(a); bp != fluid_end; ++bp, ++g_r, ++g_dw) {
+      for (const std::uint32_t* bp = begin; bp != fluid_end; ++bp) {
+        const auto e = static_cast<std::size_t>(bp - begin);
         const std::uint32_t b = *bp;
         const double c = coef[cls[b]];  // 0 for non-conducting pairs
-        const double r = *g_r;
-        if (c == 0.0 || r == 0) continue;
-        sum += vol[b] * c * (va - value[b]) / r * *g_dw;
+        if (c == 0.0 || g.coincident(e)) continue;
+        sum += g.over_r_times_dwdr(vol[b] * c * (va - value[b]), e);
       }
-      for (const std::uint32_t* bp = fluid_end; bp != nl.end(a); ++bp, ++g_r, ++g_dw) {
+      for (const std::uint32_t* bp = fluid_end; bp != nl.end(a); ++bp) {
+        const auto e = static_cast<std::size_t>(bp - begin);
         const std::uint32_t b = *bp;
         const std::uint16_t cb = cls[b];
         const double c = coef[cb];  // 0 for insulated walls and non-conducting pairs
@@ -183,9 +201,8 @@ class ScalarDiffusion {
           const double towards = kMirrorLimit * (va - targets_[cb - nm]);
           diff = std::clamp(diff, std::min(0.0, towards), std::max(0.0, towards));
         }
-        const double r = *g_r;
-        if (r == 0) continue;
-        sum += vol[b] * c * diff / r * *g_dw;
+        if (g.coincident(e)) continue;
+        sum += g.over_r_times_dwdr(vol[b] * c * diff, e);
       }
       rate_[a] = (sum + source_) / rho_a;  // power per unit mass
     }
@@ -197,13 +214,6 @@ class ScalarDiffusion {
     }
   }
 
-  // Bytes of the unit's per-particle scratch (the value column is counted with the store).
-  std::size_t bytes() const {
-    return rate_.capacity() * sizeof(double) + volume_.capacity() * sizeof(double) +
-           class_.capacity() * sizeof(std::uint16_t);
-  }
-
- private:
   ParticleStore<D>& s_;
   Column<double>& value_;
   std::vector<DiffusionMaterial> mats_;

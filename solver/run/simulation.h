@@ -188,11 +188,11 @@ class Simulation {
   Halo<D> halo_;
   ParticleStore<D> s_;
   NeighborList<D> nl_;
-  PairKernel<D> pk_{c_.pair_kernel_storage() == v1::PAIR_KERNEL_STREAM
+  PairKernel<D> pk_{pair_kernel_storage(c_) == v1::PAIR_KERNEL_STREAM
                         ? PairKernel<D>::Storage::kStream
-                    : c_.pair_kernel_storage() == v1::PAIR_KERNEL_COMPACT
-                        ? PairKernel<D>::Storage::kCompact
-                        : PairKernel<D>::Storage::kTable};  // the kernel of nl_'s pairs
+                    : pair_kernel_storage(c_) == v1::PAIR_KERNEL_TABLE
+                        ? PairKernel<D>::Storage::kTable
+                        : PairKernel<D>::Storage::kCompact};  // the kernel of nl_'s pairs
   GuardSettings guards_;
   OutputSchedule schedule_;
   RunRecorder recorder_;  // result file, checkpoints, progress, metadata

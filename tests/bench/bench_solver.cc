@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "case/estimate.h"
 #include "case/load.h"
 #include "solver/core/kernel.h"
 #include "solver/parallel/load_balance.h"
@@ -176,9 +177,9 @@ double bench(const sph::v1::Case& c, int steps, int skip, bool balance_by_kind, 
         "bench_solver case=%s dim=%d kernel=%s pair_kernel=%s ranks=%d particles=%.0f (dx=%.4g) "
         "steps=%d from t=%.4g setup=%.2fs\n",
         c.name().c_str(), D, K::kSupport == 3.0 ? "quintic" : "wendland",
-        c.pair_kernel_storage() == sph::v1::PAIR_KERNEL_STREAM    ? "stream"
-        : c.pair_kernel_storage() == sph::v1::PAIR_KERNEL_COMPACT ? "compact"
-                                                                  : "table",
+        sph::pair_kernel_storage(c) == sph::v1::PAIR_KERNEL_STREAM  ? "stream"
+        : sph::pair_kernel_storage(c) == sph::v1::PAIR_KERNEL_TABLE ? "table"
+                                                                    : "compact",
         size, n, c.dx(), steps, sim.time(), setup);
     std::printf("  time/step          %10.3f ms\n", 1e3 * wall / steps);
     std::printf("  particle-steps/s   %10.3e  (%.3e per rank; all particles, walls included)\n",
