@@ -45,7 +45,7 @@ double neighbor_skin(const v1::Case& c);
 // How the run keeps the kernel values of its pairs: as the case asks, and by default the
 // compact table (single precision), which the fluid forces and conduction read as they are,
 // except with the effects whose passes need r and dW/dr in double (surface tension, particle
-// shifting, Riemann dissipation, density diffusion): there the compact table costs 9-20% of a
+// shifting, Riemann dissipation, density diffusion): there the compact table costs 10-21% of a
 // step (docs/effects.md, "Memory per particle") and the double table is the default.
 v1::PairKernelStorage pair_kernel_storage(const v1::Case& c);
 // The thickness a `shell` wall gets when it gives none: whole layers of dx covering r_c
