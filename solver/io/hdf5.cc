@@ -94,6 +94,9 @@ std::string read_string_attribute(hid_t obj, const std::string& name) {
   std::string s(n, '\0');
   Handle mem(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
   check(H5Tset_size(mem, n), "string size");
+  // Null-padded like the stored string: the default null-terminated type of the same size
+  // keeps its last byte for the terminator, which cut the last character off.
+  check(H5Tset_strpad(mem, H5T_STR_NULLPAD), "string pad");
   check(H5Aread(attr, mem, s.data()), "read attribute " + name);
   while (!s.empty() && s.back() == '\0') s.pop_back();
   return s;

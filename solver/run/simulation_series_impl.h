@@ -254,6 +254,11 @@ template <int D, class K>
 std::map<std::string, std::string> Simulation<D, K>::metadata(const std::string& status) const {
   auto m = recorder_.metadata(opt_.case_text.empty() ? c_.DebugString() : std::string(), D, dx_, h_,
                               skin_, K::kSupport == 3.0 ? "quintic_spline" : "wendland_c2", units_);
+  // The storage the case chose or was given by default (case/estimate.h pair_kernel_storage()).
+  const v1::PairKernelStorage storage = pair_kernel_storage(c_);
+  m["pair_kernel_storage"] = storage == v1::PAIR_KERNEL_STREAM  ? "stream"
+                             : storage == v1::PAIR_KERNEL_TABLE ? "table"
+                                                                : "compact";
   if (bodies_) {
     std::string names;
     for (const auto& b : bodies_->bodies()) names += (names.empty() ? "" : ",") + b.name;

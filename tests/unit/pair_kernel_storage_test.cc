@@ -11,6 +11,7 @@
 #include "case/estimate.h"
 #include "case/load.h"
 #include "solver/core/kernel.h"
+#include "solver/io/hdf5.h"
 #include "solver/run/simulation.h"
 
 namespace sph {
@@ -46,7 +47,7 @@ TEST(PairKernelStorage, CompactByDefaultTableWhereAPassReadsTheDistance) {
 }
 
 // The run keeps what the rule says: 8 bytes a pair (plus the 1/8 spare) by default, 24 with
-// the table, none with the stream.
+// the table, none with the stream; and its result says which.
 TEST(PairKernelStorage, TheRunKeepsEightBytesAPairByDefault) {
   const std::string out =
       (std::filesystem::temp_directory_path() / ("sphd-pk-" + std::to_string(::getpid()))).string();
@@ -62,9 +63,21 @@ TEST(PairKernelStorage, TheRunKeepsEightBytesAPairByDefault) {
     return static_cast<double>(sim.memory_by_owner()["pair_kernel"]) /
            static_cast<double>(sim.pairs());
   };
+  // The result names the storage the run chose (/meta pair_kernel_storage).
+  const auto recorded = [&] {
+    const hid_t f = H5Fopen((out + "/result.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    const hid_t meta = H5Gopen2(f, "/meta", H5P_DEFAULT);
+    const std::string v = h5::read_string_attribute(meta, "pair_kernel_storage");
+    H5Gclose(meta);
+    H5Fclose(f);
+    return v;
+  };
   const double compact = bytes_a_pair(v1::PAIR_KERNEL_STORAGE_UNSPECIFIED);
+  EXPECT_EQ(recorded(), "compact");
   const double table = bytes_a_pair(v1::PAIR_KERNEL_TABLE);
+  EXPECT_EQ(recorded(), "table");
   const double stream = bytes_a_pair(v1::PAIR_KERNEL_STREAM);
+  EXPECT_EQ(recorded(), "stream");
   std::printf("pair kernel bytes a pair: default %.2f, table %.2f, stream %.2f\n", compact, table,
               stream);
   EXPECT_GE(compact, 8.0);
