@@ -151,10 +151,8 @@ double kernel_support_radius(const v1::Case& c) {
 v1::PairKernelStorage pair_kernel_storage(const v1::Case& c) {
   if (c.pair_kernel_storage() != v1::PAIR_KERNEL_STORAGE_UNSPECIFIED)
     return c.pair_kernel_storage();
-  const auto& fm = c.fluid_model();
-  const bool reads_r = c.has_surface_tension() || fm.has_particle_shifting() ||
-                       fm.has_riemann_dissipation() || fm.has_density_diffusion();
-  return reads_r ? v1::PAIR_KERNEL_TABLE : v1::PAIR_KERNEL_COMPACT;
+  return c.fluid_model().has_riemann_dissipation() ? v1::PAIR_KERNEL_TABLE
+                                                   : v1::PAIR_KERNEL_COMPACT;
 }
 
 double neighbor_skin(const v1::Case& c) {

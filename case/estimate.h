@@ -43,10 +43,10 @@ double kernel_support_radius(const v1::Case& c);
 // periodic axis of the domain two cells of r_c + skin (no pair through two images).
 double neighbor_skin(const v1::Case& c);
 // How the run keeps the kernel values of its pairs: as the case asks, and by default the
-// compact table (single precision), which the fluid forces and conduction read as they are,
-// except with the effects whose passes need r and dW/dr in double (surface tension, particle
-// shifting, Riemann dissipation, density diffusion): there the compact table costs 10-21% of a
-// step (docs/effects.md, "Memory per particle") and the double table is the default.
+// compact table (single precision), which every pass over pairs reads as it is
+// (solver/core/pair_access.h), except in a case with Riemann dissipation: its passes need r
+// and dW/dr themselves, a square root a pair on the compact table, which cost them 10% of a
+// step (docs/effects.md, "Memory per particle"), so there the double table is the default.
 v1::PairKernelStorage pair_kernel_storage(const v1::Case& c);
 // The thickness a `shell` wall gets when it gives none: whole layers of dx covering r_c
 // (Adami 2012 sec. 3).

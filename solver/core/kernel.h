@@ -8,6 +8,7 @@
 // vectorises; each piece beyond its range adds an exact zero, so the values equal W() and dW()
 // to the bit (tests/unit/kernel_test.cc checks it).
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <numbers>
 
@@ -51,6 +52,28 @@ class QuinticSpline {
       d -= 75.0 * c * c * c * c;
       w_out[k] = sw * w;
       dw_out[k] = sd * d;
+    }
+  }
+  // W and (dW/dr) / r of n squared distances, rounded to Out (the compact pair table,
+  // solver/core/pair_kernel.h) in the same loop. The values before rounding are those of
+  // evaluate() at r = sqrt(r2), (dW/dr) / r divided as the table's dW/dr / r; 0 at r = 0,
+  // where dW/dr vanishes.
+  template <class Out>
+  void evaluate_over_r(std::size_t n, const double* __restrict r2, Out* __restrict w_out,
+                       Out* __restrict dwr_out) const {
+    const double sw = sigma_, sd = sigma_ * inv_h_, inv_h = inv_h_;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double r = std::sqrt(r2[k]), q = r * inv_h;
+      const double a = std::max(3.0 - q, 0.0), b = std::max(2.0 - q, 0.0),
+                   c = std::max(1.0 - q, 0.0);
+      double w = a * a * a * a * a;
+      w -= 6.0 * b * b * b * b * b;
+      w += 15.0 * c * c * c * c * c;
+      double d = -5.0 * a * a * a * a;
+      d += 30.0 * b * b * b * b;
+      d -= 75.0 * c * c * c * c;
+      w_out[k] = static_cast<Out>(sw * w);
+      dwr_out[k] = static_cast<Out>(sd * d / (r > 0.0 ? r : 1.0));
     }
   }
 
@@ -97,6 +120,23 @@ class WendlandC2 {
       // Selects, not branches; beyond the support d is -0 where dW() returns +0.
       w_out[k] = q < 2.0 ? w : 0.0;
       dw_out[k] = q < 2.0 ? d : 0.0;
+    }
+  }
+  // W and (dW/dr) / r of n squared distances, rounded to Out (the compact pair table,
+  // solver/core/pair_kernel.h) in the same loop. dW/dr = sigma/h (-5 q) a^3 with q = r/h, so
+  // (dW/dr) / r = -5 sigma/h^2 a^3: no division, and W is evaluate()'s at r = sqrt(r2).
+  // (dW/dr) / r is set to 0 at r = 0, where dW/dr vanishes (the passes take a zero as a
+  // coincident pair, solver/core/pair_access.h).
+  template <class Out>
+  void evaluate_over_r(std::size_t n, const double* __restrict r2, Out* __restrict w_out,
+                       Out* __restrict dwr_out) const {
+    const double sw = sigma_, sdr = -5.0 * sigma_ * inv_h_ * inv_h_, inv_h = inv_h_;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double q = std::sqrt(r2[k]) * inv_h;
+      const double a = std::max(1.0 - 0.5 * q, 0.0);
+      const double w = sw * a * a * a * a * (2.0 * q + 1.0), dwr = sdr * a * a * a;
+      w_out[k] = static_cast<Out>(q < 2.0 ? w : 0.0);
+      dwr_out[k] = static_cast<Out>(q < 2.0 && r2[k] > 0.0 ? dwr : 0.0);
     }
   }
 

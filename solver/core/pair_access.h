@@ -5,7 +5,9 @@
 // where a pass needs it). A pass is written once against this shape and instantiated for
 // both; the double form computes exactly what the passes computed before it existed, to the
 // bit, so each method keeps the order of operations of the expression it stands for.
+#include <cmath>
 #include <cstddef>
+#include <type_traits>
 
 #include "solver/core/pair_kernel.h"
 
@@ -22,6 +24,15 @@ struct ExactPairs {
   double dwdr_r(std::size_t k) const { return dw[k] / r[k]; }
   // x / r * dW/dr (the conduction flux of Cleary & Monaghan).
   double over_r_times_dwdr(double x, std::size_t k) const { return x / r[k] * dw[k]; }
+  // x dW/dr / r (a V_j grad W_ij written as (V_j dW/dr / r) x_ij).
+  double times_dwdr_over_r(double x, std::size_t k) const { return x * dw[k] / r[k]; }
+  // r_ij, for the passes that need the distance itself (a unit vector, the nearest pair).
+  template <class V>
+  double distance(std::size_t k, const V& /*rij*/) const {
+    return r[k];
+  }
+  // dW/dr at the distance r = distance(k, rij).
+  double dwdr_at(std::size_t k, double /*r*/) const { return dw[k]; }
   template <class V>
   double r2(std::size_t k, const V& /*rij*/) const {
     return r[k] * r[k];
@@ -45,6 +56,14 @@ struct CompactPairs {
   double over_r_times_dwdr(double x, std::size_t k) const {
     return x * static_cast<double>(dw_r[k]);
   }
+  double times_dwdr_over_r(double x, std::size_t k) const {
+    return x * static_cast<double>(dw_r[k]);
+  }
+  template <class V>
+  double distance(std::size_t /*k*/, const V& rij) const {
+    return std::sqrt(rij.squaredNorm());
+  }
+  double dwdr_at(std::size_t k, double r) const { return static_cast<double>(dw_r[k]) * r; }
   template <class V>
   double r2(std::size_t /*k*/, const V& rij) const {
     return rij.squaredNorm();
@@ -53,6 +72,15 @@ struct CompactPairs {
   double dummy_dwdr(std::size_t k) const { return dw_r[k]; }
   double dummy_r(std::size_t /*k*/) const { return 1.0; }
 };
+
+// Calls pass(std::bool_constant<kCompact>{}) with the form pk keeps its values in, so that a
+// pass written once against pairs_of<kCompact> runs on either:
+//   with_pair_form(ctx.pairs, [&](auto compact) { sweep<decltype(compact)::value>(ctx); });
+template <int D, class Pass>
+decltype(auto) with_pair_form(const PairKernel<D>& pk, Pass&& pass) {
+  if (pk.compact()) return pass(std::true_type{});
+  return pass(std::false_type{});
+}
 
 // Particle i's pairs in the form the instantiation reads.
 template <bool kCompact, int D>

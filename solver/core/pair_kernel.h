@@ -11,15 +11,17 @@
 //  - kTable: every pair evaluated once when the list is built and r, W and dW/dr kept in
 //    double (24 bytes a pair), the values the passes computed before the table existed, to
 //    the bit.
-//  - kCompact (a case's default, case/estimate.h pair_kernel_storage()): W and (dW/dr) / r kept in
-//  single
-//    precision (8 bytes a pair), the two values the fluid forces and conduction read
-//    (grad W_ij = (dW/dr / r) x_ij), which read them as they are (compact_of,
-//    solver/core/pair_access.h). Other passes get a particle's values in double
-//    (of()): r from the positions, W widened, dW/dr = ((dW/dr) / r) r. Each value carries a
-//    relative rounding of at most 2^-24 (6e-8; with Verlet lists W and dW/dr are those of the
-//    distance from the single-precision square), far below the discretisation error and the
-//    same on every rank count.
+//  - kCompact (a case's default, case/estimate.h pair_kernel_storage()): W and (dW/dr) / r kept
+//    in single precision (8 bytes a pair), the two values the passes over pairs need
+//    (grad W_ij = (dW/dr / r) x_ij), which they read as they are (compact_of,
+//    solver/core/pair_access.h; r from the positions where a pass needs it).
+//    of() still gives a particle's values in double to any pass that asks: r from the
+//    positions, W widened, dW/dr = ((dW/dr) / r) r. The kernel evaluates
+//    both from the squared distance and rounds them in one loop (K::evaluate_over_r; the
+//    Wendland kernel's (dW/dr) / r without a division). Each value carries a relative error of
+//    at most 2^-23 (1.2e-7; with Verlet lists W and dW/dr are those of the distance from the
+//    single-precision square), far below the discretisation error and the same on every rank
+//    count.
 //  - kStream: a particle's pairs evaluated into a scratch buffer each time a pass asks for
 //    them; no storage, each pass gathers and evaluates again. The same bits as kTable.
 #include <algorithm>
@@ -66,13 +68,20 @@ class PairKernel {
     } else if (storage_ == Storage::kCompact) {
       fit(w32_, n);
       fit(dwr32_, n);
+      // The squared distances of consecutive particles' lists (which lie one after the other
+      // in the storage) gathered into the double scratch until it holds a block, then
+      // evaluated and rounded in one loop: few and long loops, the scratch in cache.
+      std::size_t e0 = 0, e_end = 0;
       for (std::size_t i = 0; i < s.owned(); ++i) {
-        const auto len = static_cast<std::size_t>(nl.end(i) - nl.begin(i));
-        grow_scratch(len);
-        distances(nl, i, r_.data());
-        k.evaluate(len, r_.data(), w_.data(), dw_.data());
-        round_into(len, nl.first(i));
+        e_end = nl.first(i) + static_cast<std::size_t>(nl.end(i) - nl.begin(i));
+        grow_scratch(e_end - e0);
+        squared_distances(nl, i, r_.data() + (nl.first(i) - e0));
+        if (e_end - e0 >= kBlock) {
+          k.evaluate_over_r(e_end - e0, r_.data(), w32_.data() + e0, dwr32_.data() + e0);
+          e0 = e_end;
+        }
       }
+      k.evaluate_over_r(e_end - e0, r_.data(), w32_.data() + e0, dwr32_.data() + e0);
     }
   }
 
@@ -106,13 +115,11 @@ class PairKernel {
     fit(w32_, n);
     // In blocks, so that the double scratch stays small and in cache. Each block's squared
     // distances are read before its values are written over them.
-    constexpr std::size_t kBlock = 512;
     grow_scratch(kBlock);
     for (std::size_t e0 = 0; e0 < n; e0 += kBlock) {
       const std::size_t len = std::min(kBlock, n - e0);
-      for (std::size_t e = 0; e < len; ++e) r_[e] = std::sqrt(static_cast<double>(dwr32_[e0 + e]));
-      k.evaluate(len, r_.data(), w_.data(), dw_.data());
-      round_into(len, e0);
+      for (std::size_t e = 0; e < len; ++e) r_[e] = static_cast<double>(dwr32_[e0 + e]);
+      k.evaluate_over_r(len, r_.data(), w32_.data() + e0, dwr32_.data() + e0);
     }
   }
 
@@ -140,7 +147,7 @@ class PairKernel {
   }
 
   // The compact table's own values of particle i's pairs, for the passes that read single
-  // precision directly (the fluid forces). kCompact only.
+  // precision directly (solver/core/pair_access.h). kCompact only.
   CompactPairValues compact_of(const NeighborList<D>& nl, std::size_t i) const {
     check_fresh(nl);
     const std::size_t e = nl.first(i);
@@ -192,17 +199,6 @@ class PairKernel {
   static void widen(const float* __restrict in, double* __restrict out, std::size_t n) {
     for (std::size_t e = 0; e < n; ++e) out[e] = in[e];
   }
-  // The first n values of the double scratch into the single-precision table at e0:
-  // W and (dW/dr) / r.
-  void round_into(std::size_t n, std::size_t e0) {
-    float* __restrict w = w32_.data() + e0, * __restrict dwr = dwr32_.data() + e0;
-    const double* __restrict r = r_.data(), * __restrict wd = w_.data(), * __restrict dw = dw_.data();
-    for (std::size_t e = 0; e < n; ++e) w[e] = static_cast<float>(wd[e]);
-    // Divided by 1 where r = 0 (dW/dr is 0 there, and the passes skip coincident particles),
-    // so that the loop divides unconditionally and vectorises.
-    for (std::size_t e = 0; e < n; ++e)
-      dwr[e] = static_cast<float>(dw[e] / (r[e] > 0.0 ? r[e] : 1.0));
-  }
   // W and dW/dr of the first n distances in r_.
   template <class K>
   void evaluate_table(std::size_t n, const K& k) {
@@ -219,19 +215,24 @@ class PairKernel {
     v.resize(n + n / 8);
   }
 
+  // |x_i - x_j|^2 of particle i's pairs.
+  void squared_distances(const NeighborList<D>& nl, std::size_t i, double* out) const {
+    const Vec<D>* x = s_->x.data();
+    const Vec<D> xi = x[i];
+    for (const std::uint32_t* jp = nl.begin(i); jp != nl.end(i); ++jp)
+      *out++ = (xi - x[*jp]).squaredNorm();
+  }
   // |x_i - x_j| of particle i's pairs, as Eigen's norm() (sqrt of squaredNorm) computes it:
   // gathered first, so that the square roots vectorise.
   void distances(const NeighborList<D>& nl, std::size_t i, double* out) const {
-    const Vec<D>* x = s_->x.data();
-    const Vec<D> xi = x[i];
-    double* r = out;
-    for (const std::uint32_t* jp = nl.begin(i); jp != nl.end(i); ++jp)
-      *r++ = (xi - x[*jp]).squaredNorm();
-    const auto n = static_cast<std::size_t>(r - out);
+    squared_distances(nl, i, out);
+    const auto n = static_cast<std::size_t>(nl.end(i) - nl.begin(i));
     for (std::size_t e = 0; e < n; ++e) out[e] = std::sqrt(out[e]);
   }
 
   static constexpr std::uint64_t kNone = std::numeric_limits<std::uint64_t>::max();
+  // Pairs the compact table evaluates at once from the double scratch.
+  static constexpr std::size_t kBlock = 512;
   Storage storage_;
   const ParticleStore<D>* s_ = nullptr;
   const void* kernel_ = nullptr;

@@ -42,6 +42,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/pair_access.h"
 #include "solver/physics/body_force.h"
 #include "solver/physics/fluid_table.h"
 #include "solver/seam/unit.h"
@@ -81,6 +82,12 @@ class DensityDiffusion final : public Unit<D> {
 
   void run(StepPhase, StepContext<D>& ctx) override {
     if (ctx.dt <= 0) return;  // priming: the density is the initial one
+    with_pair_form(ctx.pairs, [&](auto compact) { diffuse<decltype(compact)::value>(ctx); });
+  }
+
+ private:
+  template <bool kCompact>
+  void diffuse(StepContext<D>& ctx) {
     ParticleStore<D>& s = ctx.particles;
     const NeighborList<D>& nl = ctx.neighbors;
     const std::size_t n = s.owned();
@@ -93,7 +100,7 @@ class DensityDiffusion final : public Unit<D> {
       if (s.kind[i] != Kind::kFluid) continue;
       const double rhoi = s.rho[i];
       const Vec<D> xi = s.x[i];
-      const PairValues pv = ctx.pairs.of(nl, i);
+      const auto g = pairs_of<kCompact>(ctx.pairs, nl, i);
       const std::uint32_t* first = nl.begin(i);
       const std::uint32_t* fluid_end = nl.fluid_end(i);
       const std::uint32_t* end = nl.end(i);
@@ -101,12 +108,12 @@ class DensityDiffusion final : public Unit<D> {
       std::size_t k = 0;
       for (const std::uint32_t* jp = first; jp != end; ++jp, ++k) {
         const std::uint32_t j = *jp;
-        const double r = pv.r[k];
-        if (!(r > 0.0)) continue;
+        const Vec<D> xij = xi - s.x[j];
+        if (g.coincident(k, xij)) continue;
         double drho = rhoi - s.rho[j];
-        if (hydro) drho += hydrostatic_difference(grad_p.dot(xi - s.x[j]));
+        if (hydro) drho += hydrostatic_difference(grad_p.dot(xij));
         const double vol = jp < fluid_end ? s.m[j] / s.rho[j] : wall_volume_;
-        sum += drho * pv.dw[k] / r * vol;
+        sum += g.times_dwdr_over_r(drho, k) * vol;
       }
       rate_[i] = coef_ * sum;
     }
@@ -116,7 +123,6 @@ class DensityDiffusion final : public Unit<D> {
     ctx.halo.update(s, {&s.rho});
   }
 
- private:
   // rho(dp) - rho0 = rho0 [(1 + x)^(1/gamma) - 1], x = dp / p0, for the hydrostatic pressure
   // difference dp by the material's EOS (Fourtakas et al. 2019: the Tait form; linear:
   // dp / c^2). Across a kernel support x is of the order of the Mach number squared of the

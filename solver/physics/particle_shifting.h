@@ -61,6 +61,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "solver/core/pair_access.h"
 #include "solver/physics/fluid_table.h"
 #include "solver/seam/unit.h"
 #include "sph/v1/case.pb.h"
@@ -110,7 +111,7 @@ class ParticleShifting final : public Unit<D> {
     drho_.resize(n);
     // The ghosts carry the velocity of the drift (u^{n+1/2}); the Taylor step reads u^{n+1}.
     ctx.halo.update(s, {&s.v});
-    concentration(ctx);
+    with_pair_form(ctx.pairs, [&](auto compact) { concentration<decltype(compact)::value>(ctx); });
     ctx.halo.update(s, {&gradient_});  // the surface normal averages the neighbours' gradients
     double speed = 0;
     if (maximum_speed_) {
@@ -118,11 +119,14 @@ class ParticleShifting final : public Unit<D> {
         if (s.kind[i] == Kind::kFluid) speed = std::max(speed, s.v[i].norm());
       speed = ctx.comm.max(speed);  // an exact maximum: the same on every rank count
     }
-    shifts(ctx, speed);
-    if (correct_density_) {
-      ctx.halo.update(s, {&shift_});  // the divergence reads the neighbours' shifts
-      volume_change(ctx);
-    }
+    with_pair_form(ctx.pairs, [&](auto compact) {
+      constexpr bool kCompact = decltype(compact)::value;
+      shifts<kCompact>(ctx, speed);
+      if (correct_density_) {
+        ctx.halo.update(s, {&shift_});  // the divergence reads the neighbours' shifts
+        volume_change<kCompact>(ctx);
+      }
+    });
     surface_ = 0;
     largest_ = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -146,6 +150,7 @@ class ParticleShifting final : public Unit<D> {
 
  private:
   // C_i and grad C_i (Lind 2012 eqs. 6-7) of the owned fluid particles.
+  template <bool kCompact>
   void concentration(StepContext<D>& ctx) {
     ParticleStore<D>& s = ctx.particles;
     const NeighborList<D>& nl = ctx.neighbors;
@@ -153,7 +158,7 @@ class ParticleShifting final : public Unit<D> {
       gradient_[i] = Vec<D>::Zero();
       if (s.kind[i] != Kind::kFluid) continue;
       const Vec<D> xi = s.x[i];
-      const PairValues pv = ctx.pairs.of(nl, i);
+      const auto pairs = pairs_of<kCompact>(ctx.pairs, nl, i);
       const std::uint32_t* first = nl.begin(i);
       const std::uint32_t* fluid_end = nl.fluid_end(i);
       const std::uint32_t* end = nl.end(i);
@@ -162,11 +167,11 @@ class ParticleShifting final : public Unit<D> {
       std::size_t k = 0;
       for (const std::uint32_t* jp = first; jp != end; ++jp, ++k) {
         const std::uint32_t j = *jp;
-        const double r = pv.r[k];
-        if (!(r > 0.0)) continue;
+        const Vec<D> xij = xi - s.x[j];
+        if (pairs.coincident(k, xij)) continue;
         const double vol = jp < fluid_end ? s.m[j] / s.rho[j] : wall_volume_;
-        c += vol * pv.w[k];
-        g += (vol * pv.dw[k] / r) * (xi - s.x[j]);
+        c += vol * pairs.W(k);
+        g += pairs.times_dwdr_over_r(vol, k) * xij;
       }
       completeness_[i] = c;
       gradient_[i] = g;
@@ -174,6 +179,7 @@ class ParticleShifting final : public Unit<D> {
   }
 
   // dr_i with the free-surface treatment, and the Taylor correction of u.
+  template <bool kCompact>
   void shifts(StepContext<D>& ctx, double max_speed) {
     ParticleStore<D>& s = ctx.particles;
     const NeighborList<D>& nl = ctx.neighbors;
@@ -186,7 +192,7 @@ class ParticleShifting final : public Unit<D> {
       // Skillen et al. 2013 eq. 25: D = A h |u| dt.
       Vec<D> d = (-coefficient_ * h_ * speed * ctx.dt) * gradient_[i];
       const Vec<D> xi = s.x[i];
-      const PairValues pv = ctx.pairs.of(nl, i);
+      const auto pairs = pairs_of<kCompact>(ctx.pairs, nl, i);
       const std::uint32_t* first = nl.begin(i);
       const std::uint32_t* fluid_end = nl.fluid_end(i);
       if (completeness_[i] < threshold_) {
@@ -195,7 +201,7 @@ class ParticleShifting final : public Unit<D> {
         std::size_t k = 0;
         for (const std::uint32_t* jp = first; jp != fluid_end; ++jp, ++k) {
           const std::uint32_t j = *jp;
-          normal += (s.m[j] / s.rho[j] * pv.w[k]) * gradient_[j];
+          normal += (s.m[j] / s.rho[j] * pairs.W(k)) * gradient_[j];
         }
         const double n2 = normal.squaredNorm();
         if (!(n2 > 0)) continue;
@@ -207,10 +213,10 @@ class ParticleShifting final : public Unit<D> {
       std::size_t k = 0;
       for (const std::uint32_t* jp = first; jp != fluid_end; ++jp, ++k) {
         const std::uint32_t j = *jp;
-        const double r = pv.r[k];
-        if (!(r > 0.0)) continue;
+        const Vec<D> xij = xi - s.x[j];
+        if (pairs.coincident(k, xij)) continue;
         // V_j grad_i W_ij . dr_i
-        const double g = s.m[j] / s.rho[j] * pv.dw[k] / r * (xi - s.x[j]).dot(d);
+        const double g = pairs.times_dwdr_over_r(s.m[j] / s.rho[j], k) * xij.dot(d);
         dv += g * (s.v[j] - vi);
       }
       shift_[i] = d;
@@ -219,6 +225,7 @@ class ParticleShifting final : public Unit<D> {
   }
 
   // div dr_i (into drho_) over fluid, wall and rigid neighbours; walls and bodies do not shift.
+  template <bool kCompact>
   void volume_change(StepContext<D>& ctx) {
     ParticleStore<D>& s = ctx.particles;
     const NeighborList<D>& nl = ctx.neighbors;
@@ -226,7 +233,7 @@ class ParticleShifting final : public Unit<D> {
       drho_[i] = 0;
       if (s.kind[i] != Kind::kFluid) continue;
       const Vec<D> xi = s.x[i], di = shift_[i];
-      const PairValues pv = ctx.pairs.of(nl, i);
+      const auto pairs = pairs_of<kCompact>(ctx.pairs, nl, i);
       const std::uint32_t* first = nl.begin(i);
       const std::uint32_t* fluid_end = nl.fluid_end(i);
       const std::uint32_t* end = nl.end(i);
@@ -234,12 +241,12 @@ class ParticleShifting final : public Unit<D> {
       std::size_t k = 0;
       for (const std::uint32_t* jp = first; jp != end; ++jp, ++k) {
         const std::uint32_t j = *jp;
-        const double r = pv.r[k];
-        if (!(r > 0.0)) continue;
+        const Vec<D> xij = xi - s.x[j];
+        if (pairs.coincident(k, xij)) continue;
         const bool fluid = jp < fluid_end;
         const double vol = fluid ? s.m[j] / s.rho[j] : wall_volume_;
         const Vec<D> dj = fluid ? shift_[j] : Vec<D>::Zero();
-        div += vol * pv.dw[k] / r * (xi - s.x[j]).dot(dj - di);
+        div += pairs.times_dwdr_over_r(vol, k) * xij.dot(dj - di);
       }
       drho_[i] = div;
     }

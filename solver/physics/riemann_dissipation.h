@@ -58,6 +58,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "solver/core/pair_access.h"
 #include "solver/physics/body_force.h"
 #include "solver/physics/fluid_table.h"
 #include "solver/seam/unit.h"
@@ -90,15 +91,19 @@ class RiemannDissipation final : public Unit<D> {
   std::size_t scratch_bytes() const override { return rate_.capacity() * sizeof(double); }
 
   void run(StepPhase phase, StepContext<D>& ctx) override {
-    if (phase == StepPhase::kAfterSearch)
-      continuity(ctx);
-    else
-      momentum(ctx);
+    with_pair_form(ctx.pairs, [&](auto compact) {
+      constexpr bool kCompact = decltype(compact)::value;
+      if (phase == StepPhase::kAfterSearch)
+        continuity<kCompact>(ctx);
+      else
+        momentum<kCompact>(ctx);
+    });
   }
 
  private:
   // D_i = rho_i / c sum_j V_j (p_i - p_j - rho0 b . r_ij) / rho_bar (dW/dr)_ij, added as
   // dt D_i (without the hydrostatic correction b = 0 here).
+  template <bool kCompact>
   void continuity(StepContext<D>& ctx) {
     if (ctx.dt <= 0) return;  // priming: the density is the initial one
     ParticleStore<D>& s = ctx.particles;
@@ -111,7 +116,7 @@ class RiemannDissipation final : public Unit<D> {
       if (s.kind[i] != Kind::kFluid) continue;
       const double rhoi = s.rho[i], pi = s.p[i];
       const Vec<D> xi = s.x[i];
-      const PairValues pv = ctx.pairs.of(nl, i);
+      const auto g = pairs_of<kCompact>(ctx.pairs, nl, i);
       const std::uint32_t* first = nl.begin(i);
       const std::uint32_t* fluid_end = nl.fluid_end(i);
       const std::uint32_t* end = nl.end(i);
@@ -119,12 +124,13 @@ class RiemannDissipation final : public Unit<D> {
       std::size_t k = 0;
       for (const std::uint32_t* jp = first; jp != end; ++jp, ++k) {
         const std::uint32_t j = *jp;
-        if (!(pv.r[k] > 0.0)) continue;
+        const Vec<D> xij = xi - s.x[j];
+        if (g.coincident(k, xij)) continue;
         const double rhoj = s.rho[j];
         const double vol = jp < fluid_end ? s.m[j] / rhoj : wall_volume_;
         double dp = pi - s.p[j];
-        if (hydro) dp -= grad_p.dot(xi - s.x[j]);
-        sum += vol * dp / (0.5 * (rhoi + rhoj)) * pv.dw[k];
+        if (hydro) dp -= grad_p.dot(xij);
+        sum += vol * dp / (0.5 * (rhoi + rhoj)) * g.dwdr_at(k, g.distance(k, xij));
       }
       rate_[i] = rhoi * inv_c_ * sum;
     }
@@ -135,6 +141,7 @@ class RiemannDissipation final : public Unit<D> {
   }
 
   // a_i += 1/m_i sum_j (V_i^2 + V_j^2) beta rho_bar (U_L - U_R)/2 (dW/dr)_ij e_ij over fluid j.
+  template <bool kCompact>
   void momentum(StepContext<D>& ctx) {
     ParticleStore<D>& s = ctx.particles;
     const NeighborList<D>& nl = ctx.neighbors;
@@ -143,22 +150,23 @@ class RiemannDissipation final : public Unit<D> {
       if (s.kind[i] != Kind::kFluid) continue;
       const double rhoi = s.rho[i], Vi = s.m[i] / rhoi;
       const Vec<D> xi = s.x[i], vi = s.v[i];
-      const PairValues pv = ctx.pairs.of(nl, i);
+      const auto g = pairs_of<kCompact>(ctx.pairs, nl, i);
       const std::uint32_t* first = nl.begin(i);
       const std::uint32_t* fluid_end = nl.fluid_end(i);
       Vec<D> acc = Vec<D>::Zero();
       std::size_t k = 0;
       for (const std::uint32_t* jp = first; jp != fluid_end; ++jp, ++k) {
         const std::uint32_t j = *jp;
-        const double r = pv.r[k];
-        if (!(r > 0.0)) continue;
-        const Vec<D> e = (s.x[j] - xi) / r;
+        const Vec<D> xji = s.x[j] - xi;
+        if (g.coincident(k, xji)) continue;
+        const double r = g.distance(k, xji);
+        const Vec<D> e = xji / r;
         const double jump = (vi - s.v[j]).dot(e);  // U_L - U_R
         if (!(jump > 0.0)) continue;               // beta = 0: the pair separates
         const double beta = std::min(eta_ * jump, c_);
         const double rhoj = s.rho[j], Vj = s.m[j] / rhoj;
         const double dp = 0.25 * beta * (rhoi + rhoj) * jump;  // beta rho_bar (U_L - U_R)/2
-        acc += ((Vi * Vi + Vj * Vj) * dp * pv.dw[k]) * e;
+        acc += ((Vi * Vi + Vj * Vj) * dp * g.dwdr_at(k, r)) * e;
       }
       s.a[i] += acc / s.m[i];
     }

@@ -72,7 +72,7 @@
 
 #include "case/materials.h"
 #include "solver/core/kernel.h"
-#include "solver/core/pair_kernel.h"
+#include "solver/core/pair_access.h"
 #include "solver/core/types.h"
 #include "solver/physics/surface_tension_free_surface.h"
 #include "solver/seam/unit.h"
@@ -122,9 +122,17 @@ class SurfaceTension final : public Unit<D> {
     double cos_other = 0, sin_other = 0;  // 180 - theta through any other material
     std::uint16_t through = kNoMaterial;
   };
+  // The passes over pairs, on the pair kernel's double values or its compact table
+  // (solver/core/pair_access.h).
+  template <bool kCompact>
+  void sweep(StepContext<D>& ctx);
+  template <bool kCompact>
   void normals(StepContext<D>& ctx);
+  template <bool kCompact>
   void curvature_and_force(StepContext<D>& ctx);
+  template <bool kCompact>
   void free_surface_curvature(StepContext<D>& ctx, std::size_t i);
+  template <bool kCompact>
   void smoothed_curvature_and_force(StepContext<D>& ctx);
   void contact_line_force(ParticleStore<D>& s, std::size_t i, const Vec<D>& mean_normal) const;
   template <class K>
@@ -280,18 +288,25 @@ double SurfaceTension<D>::planar_depth(double colour) const {
 
 template <int D>
 void SurfaceTension<D>::run(StepPhase /*phase*/, StepContext<D>& ctx) {
-  normals(ctx);
+  with_pair_form(ctx.pairs, [&](auto compact) { sweep<decltype(compact)::value>(ctx); });
+}
+
+template <int D>
+template <bool kCompact>
+void SurfaceTension<D>::sweep(StepContext<D>& ctx) {
+  normals<kCompact>(ctx);
   ctx.halo.update(ctx.particles, {&normal_});
-  curvature_and_force(ctx);
+  curvature_and_force<kCompact>(ctx);
   if (raw_curvature_ != nullptr) {
     for (std::size_t i = 0; i < ctx.particles.owned(); ++i)
       (*gradient_norm_)[i] = normal_[i].isZero() ? 0.0 : gradient_[i].norm();
     ctx.halo.update(ctx.particles, {raw_curvature_, gradient_norm_});
-    smoothed_curvature_and_force(ctx);
+    smoothed_curvature_and_force<kCompact>(ctx);
   }
 }
 
 template <int D>
+template <bool kCompact>
 void SurfaceTension<D>::normals(StepContext<D>& ctx) {
   ParticleStore<D>& s = ctx.particles;
   const NeighborList<D>& nl = ctx.neighbors;
@@ -330,19 +345,19 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
     const double rhoi = rho[i], Vi = m[i] / rhoi, Vi2 = Vi * Vi;
     Vec<D> g = Vec<D>::Zero();  // sum over the interfaces of grad c times V_i
     Vec<D> G = Vec<D>::Zero();  // the same, each interface times its sigma
-    const PairValues pv = ctx.pairs.of(nl, i);
-    const double *g_r = pv.r, *g_w = pv.w, *g_dw = pv.dw;
+    const auto pairs = pairs_of<kCompact>(ctx.pairs, nl, i);
+    std::size_t k = 0;
     // sum_j V_j W_ij over the own phase's neighbours and over all of them
     double own_support = 0, support = 0;
     const std::uint32_t* const fluid_end = nl.fluid_end(i);
-    for (const std::uint32_t* jp = nl.begin(i); jp != fluid_end; ++jp, ++g_r, ++g_w, ++g_dw) {
+    for (const std::uint32_t* jp = nl.begin(i); jp != fluid_end; ++jp, ++k) {
       const std::uint32_t j = *jp;
-      const double r = *g_r;
-      const double VWj = m[j] / rho[j] * *g_w;
+      const Vec<D> xij = xi - x[j];
+      const double VWj = m[j] / rho[j] * pairs.W(k);
       support += VWj;
       if (mat[j] == mi) own_support += VWj;
-      if (r == 0.0) continue;
-      const Vec<D> gradW = (*g_dw / r) * (xi - x[j]);
+      if (pairs.coincident(k, xij)) continue;
+      const Vec<D> gradW = pairs.dwdr_r(k) * xij;
       const double Vj = m[j] / rho[j], s2 = Vi2 + Vj * Vj;
       if (free) present += s2 * gradW;
       const std::uint16_t mj = mat[j];
@@ -358,13 +373,14 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
     double nearest = std::numeric_limits<double>::infinity();
     const ContactAngle* angle = nullptr;
     Vec<D> wall_normal = Vec<D>::Zero();
-    for (const std::uint32_t* jp = fluid_end; jp != nl.end(i); ++jp, ++g_r, ++g_w, ++g_dw) {
+    for (const std::uint32_t* jp = fluid_end; jp != nl.end(i); ++jp, ++k) {
       const std::uint32_t j = *jp;
-      const double r = *g_r;
-      support += Vw * *g_w;
-      if (r == 0.0) continue;
-      wall_normal -= (Vw * *g_dw / r) * (xi - x[j]);
-      if (free) present += ((Vi2 + Vw * Vw) * *g_dw / r) * (xi - x[j]);
+      const Vec<D> xij = xi - x[j];
+      support += Vw * pairs.W(k);
+      if (pairs.coincident(k, xij)) continue;
+      wall_normal -= pairs.times_dwdr_over_r(Vw, k) * xij;
+      if (free) present += pairs.times_dwdr_over_r(Vi2 + Vw * Vw, k) * xij;
+      const double r = pairs.distance(k, xij);
       if (r < nearest) {
         nearest = r;
         const ContactAngle* own = contact && kind[j] == Kind::kWall ? &contact_[(*wall_index_)[j]]
@@ -427,6 +443,7 @@ void SurfaceTension<D>::normals(StepContext<D>& ctx) {
 }
 
 template <int D>
+template <bool kCompact>
 void SurfaceTension<D>::curvature_and_force(StepContext<D>& ctx) {
   ParticleStore<D>& s = ctx.particles;
   const NeighborList<D>& nl = ctx.neighbors;
@@ -438,7 +455,7 @@ void SurfaceTension<D>::curvature_and_force(StepContext<D>& ctx) {
   for (std::size_t i = 0; i < s.owned(); ++i) {
     if (normal[i].isZero()) continue;  // no interface here (walls and bodies never have one)
     if (any_free_) {
-      free_surface_curvature(ctx, i);
+      free_surface_curvature<kCompact>(ctx, i);
       continue;
     }
     const Vec<D> ni = normal[i];
@@ -447,15 +464,14 @@ void SurfaceTension<D>::curvature_and_force(StepContext<D>& ctx) {
     // N = sum_j V_j (n_j - n_i) (x) grad W_ij and M = sum_j V_j (x_j - x_i) (x) grad W_ij over
     // the neighbours with a normal: for a linear field n_j - n_i = A (x_j - x_i), N = A M.
     Mat<D> N = Mat<D>::Zero(), M = Mat<D>::Zero();
-    const PairValues pv = ctx.pairs.of(nl, i);
-    const double *g_r = pv.r, *g_dw = pv.dw;
-    for (const std::uint32_t* jp = nl.begin(i); jp != nl.fluid_end(i); ++jp, ++g_r, ++g_dw) {
+    const auto pairs = pairs_of<kCompact>(ctx.pairs, nl, i);
+    std::size_t k = 0;
+    for (const std::uint32_t* jp = nl.begin(i); jp != nl.fluid_end(i); ++jp, ++k) {
       const std::uint32_t j = *jp;
       const Vec<D>& nj = normal[j];
-      const double r = *g_r;
-      if (r == 0.0 || nj.isZero()) continue;
       const Vec<D> xji = x[j] - xi;
-      const Vec<D> VgradW = (-(m[j] / rho[j]) * *g_dw / r) * xji;  // V_j grad W_ij
+      if (pairs.coincident(k, xji) || nj.isZero()) continue;
+      const Vec<D> VgradW = pairs.times_dwdr_over_r(-(m[j] / rho[j]), k) * xji;  // V_j grad W_ij
       const Vec<D> nji = mat[j] == mi ? Vec<D>(nj - ni) : Vec<D>(-nj - ni);
       N.noalias() += nji * VgradW.transpose();
       M.noalias() += xji * VgradW.transpose();
@@ -484,6 +500,7 @@ void SurfaceTension<D>::curvature_and_force(StepContext<D>& ctx) {
 // gradients, and the shrinking normal component of their mean would otherwise read as
 // curvature (measured: the outermost row of a free drop at 1.16-1.30 / R).
 template <int D>
+template <bool kCompact>
 void SurfaceTension<D>::free_surface_curvature(StepContext<D>& ctx, std::size_t i) {
   ParticleStore<D>& s = ctx.particles;
   const NeighborList<D>& nl = ctx.neighbors;
@@ -496,16 +513,16 @@ void SurfaceTension<D>::free_surface_curvature(StepContext<D>& ctx, std::size_t 
   const std::uint16_t mi = mat[i];
   const Vec<D> xi = x[i];
   Mat<D> N = Mat<D>::Zero(), M = Mat<D>::Zero();
-  const PairValues pv = ctx.pairs.of(nl, i);
-  const double *g_r = pv.r, *g_dw = pv.dw;
-  for (const std::uint32_t* jp = nl.begin(i); jp != nl.fluid_end(i); ++jp, ++g_r, ++g_dw) {
+  const auto pairs = pairs_of<kCompact>(ctx.pairs, nl, i);
+  std::size_t k = 0;
+  for (const std::uint32_t* jp = nl.begin(i); jp != nl.fluid_end(i); ++jp, ++k) {
     const std::uint32_t j = *jp;
     const Vec<D>& nj = normal[j];
-    const double r = *g_r;
-    if (r == 0.0 || nj.isZero()) continue;
-    const double wj = nj.norm();
     const Vec<D> xji = x[j] - xi;
-    const Vec<D> VgradW = (-wj * (m[j] / rho[j]) * *g_dw / r) * xji;  // w_j V_j grad W_ij
+    if (pairs.coincident(k, xji) || nj.isZero()) continue;
+    const double wj = nj.norm();
+    // w_j V_j grad W_ij
+    const Vec<D> VgradW = pairs.times_dwdr_over_r(-wj * (m[j] / rho[j]), k) * xji;
     const Vec<D> uj = nj / wj;
     const Vec<D> nji = mat[j] == mi ? Vec<D>(uj - ni) : Vec<D>(-uj - ni);
     N.noalias() += nji * VgradW.transpose();
@@ -530,6 +547,7 @@ void SurfaceTension<D>::free_surface_curvature(StepContext<D>& ctx, std::size_t 
 // on a free surface the raw curvature carries the particle-scale roughness of the surface);
 // then the force, a_i += kappa_i G_i / rho_i.
 template <int D>
+template <bool kCompact>
 void SurfaceTension<D>::smoothed_curvature_and_force(StepContext<D>& ctx) {
   ParticleStore<D>& s = ctx.particles;
   const NeighborList<D>& nl = ctx.neighbors;
@@ -547,12 +565,12 @@ void SurfaceTension<D>::smoothed_curvature_and_force(StepContext<D>& ctx) {
     const bool at_wall = !(*solid_gradient_)[i].isZero();
     Vec<D> mean = Vec<D>::Zero();
     if (at_wall) mean = self * normal[i].normalized();
-    const PairValues pv = ctx.pairs.of(nl, i);
-    const double* g_w = pv.w;
-    for (const std::uint32_t* jp = nl.begin(i); jp != nl.fluid_end(i); ++jp, ++g_w) {
+    const auto pairs = pairs_of<kCompact>(ctx.pairs, nl, i);
+    std::size_t k = 0;
+    for (const std::uint32_t* jp = nl.begin(i); jp != nl.fluid_end(i); ++jp, ++k) {
       const std::uint32_t j = *jp;
       if (normal[j].isZero()) continue;
-      const double wj = gnorm[j] * m[j] / rho[j] * *g_w;
+      const double wj = gnorm[j] * m[j] / rho[j] * pairs.W(k);
       sum += wj * raw[j];
       weight += wj;
       if (at_wall) mean += wj * normal[j].normalized();

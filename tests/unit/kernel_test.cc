@@ -1,8 +1,12 @@
 // Kernel properties: unit integral, compact support, gradient consistency and dW = W'.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #include "solver/core/kernel.h"
@@ -114,6 +118,51 @@ TEST(Kernel, BulkEvaluationEqualsPointwiseToTheBit) {
   EXPECT_EQ(bulk_mismatches(QuinticSpline<3>(1.3e-6)), 0);
   EXPECT_EQ(bulk_mismatches(WendlandC2<2>(0.37)), 0);
   EXPECT_EQ(bulk_mismatches(WendlandC2<3>(2.1)), 0);
+}
+
+// The compact table's evaluation (W and (dW/dr) / r from the squared distance, rounded to
+// single precision in the same loop) against W(r) and dW(r) / r rounded once: the largest
+// difference in units of the float nearest to the exact value. The quintic divides as the
+// table does (0 ulp); the Wendland kernel's polynomial (dW/dr) / r without a division may round
+// the other way (at most 1 ulp). At r = 0 (dW/dr) / r is 0.
+template <class K>
+double compact_ulps(const K& k) {
+  std::vector<double> r2;
+  const double rc = k.support_radius(), h = rc / K::kSupport;
+  for (int e = 0; e <= 4000; ++e) r2.push_back(std::pow(1.1 * rc * e / 4000.0, 2));
+  for (double joint : {h, 2 * h, rc})
+    for (double d : {-1e-15, 0.0, 1e-15}) r2.push_back(std::pow(joint * (1 + d), 2));
+  std::vector<float> w(r2.size()), dwr(r2.size());
+  k.evaluate_over_r(r2.size(), r2.data(), w.data(), dwr.data());
+  double worst = 0;
+  for (std::size_t e = 0; e < r2.size(); ++e) {
+    const double r = std::sqrt(r2[e]);
+    const auto w1 = static_cast<float>(k.W(r));
+    const auto d1 = static_cast<float>(r > 0 ? k.dW(r) / r : 0.0);
+    for (const auto& [got, want] : {std::pair{w[e], w1}, std::pair{dwr[e], d1}}) {
+      if (got == want) continue;
+      const float a = std::abs(want);
+      const double ulp =
+          static_cast<double>(std::nextafter(a, std::numeric_limits<float>::infinity())) -
+          static_cast<double>(a);
+      worst = std::max(worst, std::abs(static_cast<double>(got) - static_cast<double>(want)) / ulp);
+    }
+  }
+  return worst;
+}
+
+TEST(Kernel, CompactEvaluationIsTheValueRoundedToSinglePrecision) {
+  const double ulps[] = {compact_ulps(QuinticSpline<2>(0.37)),
+                         compact_ulps(QuinticSpline<3>(1.3e-6)), compact_ulps(WendlandC2<2>(0.37)),
+                         compact_ulps(WendlandC2<3>(2.1))};
+  std::printf(
+      "compact evaluation, ulps of single precision from W and dW/dr / r: quintic 2D %.0f 3D "
+      "%.0f, Wendland 2D %.0f 3D %.0f\n",
+      ulps[0], ulps[1], ulps[2], ulps[3]);
+  EXPECT_EQ(ulps[0], 0.0);
+  EXPECT_EQ(ulps[1], 0.0);
+  EXPECT_LE(ulps[2], 1.0);
+  EXPECT_LE(ulps[3], 1.0);
 }
 
 TEST(Kernel, GradientIsFirstOrderConsistentOnTheLattice) {

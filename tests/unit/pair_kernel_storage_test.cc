@@ -1,6 +1,6 @@
 // Which pair kernel storage a case runs with (case/estimate.h pair_kernel_storage()): the
-// compact table by default, the double table where surface tension, particle shifting, Riemann
-// dissipation or density diffusion read r and dW/dr in double, and whatever the case asks.
+// compact table by default (each pass over pairs reads it as it is), the double table with
+// Riemann dissipation (whose passes need r and dW/dr themselves), and whatever the case asks.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -21,26 +21,26 @@ v1::Case dam_break() {
   return load_case_file(SPHD_SOURCE_DIR "/cases/dambreak_2d.textproto");
 }
 
-TEST(PairKernelStorage, CompactByDefaultTableWhereAPassReadsTheDistance) {
+TEST(PairKernelStorage, CompactByDefaultTableWithRiemannDissipation) {
   EXPECT_EQ(pair_kernel_storage(dam_break()), v1::PAIR_KERNEL_COMPACT);
   const auto with = [](auto add) {
     v1::Case c = dam_break();
     add(c);
     return pair_kernel_storage(c);
   };
-  EXPECT_EQ(with([](v1::Case& c) { c.mutable_surface_tension(); }), v1::PAIR_KERNEL_TABLE);
+  EXPECT_EQ(with([](v1::Case& c) { c.mutable_surface_tension(); }), v1::PAIR_KERNEL_COMPACT);
   EXPECT_EQ(with([](v1::Case& c) { c.mutable_fluid_model()->mutable_particle_shifting(); }),
-            v1::PAIR_KERNEL_TABLE);
+            v1::PAIR_KERNEL_COMPACT);
   EXPECT_EQ(with([](v1::Case& c) { c.mutable_fluid_model()->mutable_riemann_dissipation(); }),
             v1::PAIR_KERNEL_TABLE);
   EXPECT_EQ(with([](v1::Case& c) { c.mutable_fluid_model()->mutable_density_diffusion(); }),
-            v1::PAIR_KERNEL_TABLE);
+            v1::PAIR_KERNEL_COMPACT);
   for (const auto asked :
        {v1::PAIR_KERNEL_TABLE, v1::PAIR_KERNEL_STREAM, v1::PAIR_KERNEL_COMPACT}) {
     EXPECT_EQ(with([&](v1::Case& c) { c.set_pair_kernel_storage(asked); }), asked);
     EXPECT_EQ(with([&](v1::Case& c) {
                 c.set_pair_kernel_storage(asked);
-                c.mutable_surface_tension();
+                c.mutable_fluid_model()->mutable_riemann_dissipation();
               }),
               asked);
   }
