@@ -42,14 +42,8 @@ class QuinticSpline {
     const double sw = sigma_, sd = sigma_ * inv_h_, inv_h = inv_h_;
     for (std::size_t k = 0; k < n; ++k) {
       const double q = r[k] * inv_h;
-      const double a = std::max(3.0 - q, 0.0), b = std::max(2.0 - q, 0.0),
-                   c = std::max(1.0 - q, 0.0);
-      double w = a * a * a * a * a;
-      w -= 6.0 * b * b * b * b * b;
-      w += 15.0 * c * c * c * c * c;
-      double d = -5.0 * a * a * a * a;
-      d += 30.0 * b * b * b * b;
-      d -= 75.0 * c * c * c * c;
+      double w, d;
+      pieces(q, w, d);
       w_out[k] = sw * w;
       dw_out[k] = sd * d;
     }
@@ -64,20 +58,25 @@ class QuinticSpline {
     const double sw = sigma_, sd = sigma_ * inv_h_, inv_h = inv_h_;
     for (std::size_t k = 0; k < n; ++k) {
       const double r = std::sqrt(r2[k]), q = r * inv_h;
-      const double a = std::max(3.0 - q, 0.0), b = std::max(2.0 - q, 0.0),
-                   c = std::max(1.0 - q, 0.0);
-      double w = a * a * a * a * a;
-      w -= 6.0 * b * b * b * b * b;
-      w += 15.0 * c * c * c * c * c;
-      double d = -5.0 * a * a * a * a;
-      d += 30.0 * b * b * b * b;
-      d -= 75.0 * c * c * c * c;
+      double w, d;
+      pieces(q, w, d);
       w_out[k] = static_cast<Out>(sw * w);
       dwr_out[k] = static_cast<Out>(sd * d / (r > 0.0 ? r : 1.0));
     }
   }
 
  private:
+  // The polynomials of W and dW/dr (before sigma and sigma / h) at q = r / h, without
+  // branches: each piece beyond its range adds an exact zero.
+  static void pieces(double q, double& w, double& d) {
+    const double a = std::max(3.0 - q, 0.0), b = std::max(2.0 - q, 0.0), c = std::max(1.0 - q, 0.0);
+    w = a * a * a * a * a;
+    w -= 6.0 * b * b * b * b * b;
+    w += 15.0 * c * c * c * c * c;
+    d = -5.0 * a * a * a * a;
+    d += 30.0 * b * b * b * b;
+    d -= 75.0 * c * c * c * c;
+  }
   static constexpr double norm() {
     // 1 / integral of the polynomial: 120 (1D), 478 pi / 7 (2D), 120 pi (3D); the 3D value
     // 3/(359 pi) found in some texts is 0.3% off.
