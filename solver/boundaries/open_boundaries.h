@@ -36,15 +36,21 @@
 // body leaves through an outlet piece by piece, its remaining part keeping the velocity the
 // rigid motion gives it there, and the particles counted through the outlet include its
 // particles. Prescribed and fixed bodies are the scene's geometry and never leave.
+// Outflows are bidirectional: where a pressure outlet's lane flux turns inwards (a vortex
+// leaving, or a pressure drop that drives fluid in through the outlet), the buffer particle
+// that crosses the inner face back becomes a fluid particle and a copy enters the lane one
+// buffer length downstream, at the outer face, so the buffer stays full instead of emptying
+// from its far end (the inflow's recycling run backwards; SPHinXsys' bidirectional buffers
+// likewise inject and delete in both directions). The outflow's count is net: particles out
+// minus particles in.
 // New particles get ids from ParticleLedger (deterministic on any rank count).
 //
 // The fluid's state next to a face is read at one sample point per lane, r_c inside the
 // fluid (so that the buffer's own state does not enter it); the rank owning the point's cell
 // sums its neighbours in canonical order and the others contribute zero, so the reduced
 // values, hence the buffers, are identical on any rank count.
-// Not supported: backflow through an outflow for longer than the buffer length (the buffer
-// empties from its far end), fluid entering an inflow buffer against the flow (it stays
-// fluid), directions that are not along a coordinate axis.
+// Not supported: fluid entering an inflow buffer against the flow (it stays fluid),
+// directions that are not along a coordinate axis.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -92,7 +98,8 @@ class OpenBoundaries {
   Column<std::uint8_t>& zone() { return zone_; }
   const std::vector<OpenBoundaryZone<D>>& zones() const { return zones_; }
   ParticleLedger<D>& ledger() { return ledger_; }
-  // Particles that entered the fluid through each inflow / left the run through each outflow.
+  // Particles that entered the fluid through each inflow / left the run through each outflow
+  // (net of those that came back in through it).
   const std::vector<std::int64_t>& through() const { return through_; }
 
   // Prescribed velocities at time t (inflows, velocity outlets), and the transport velocity
@@ -148,8 +155,11 @@ class OpenBoundaries {
       } else if (xi >= o.outer_xi()) {  // out of the run
         doomed_.push_back(static_cast<std::uint32_t>(i));
         ++tally_[z - 1u];
-      } else if (xi <= o.inner_xi()) {  // back into the fluid
+      } else if (xi <= o.inner_xi()) {  // back into the fluid; a copy refills the far end
         zone_[i] = 0;
+        parents_.push_back(static_cast<std::uint32_t>(i));
+        parent_zone_.push_back(z);
+        --tally_[z - 1u];
       }
     }
     // The bodies' counts ride in the ledger's one collective behind the zones' tallies.
@@ -164,7 +174,10 @@ class OpenBoundaries {
       const std::size_t i = totals.first_new + k;
       const std::uint8_t z = parent_zone_[k];
       zone_[i] = z;
-      s_.x[i] -= zones_[z - 1u].length() * zones_[z - 1u].normal();
+      const OpenBoundaryZone<D>& o = zones_[z - 1u];
+      // One buffer length back against the particle's crossing: upstream of an inflow's
+      // inner face, downstream of an outflow's.
+      s_.x[i] += (o.inflow() ? -o.length() : o.length()) * o.normal();
     }
     for (std::size_t b = 0; b < zones_.size(); ++b) through_[b] += tally_[b];
     set_prescribed_velocities(t, transport);
