@@ -36,13 +36,14 @@
 // body leaves through an outlet piece by piece, its remaining part keeping the velocity the
 // rigid motion gives it there, and the particles counted through the outlet include its
 // particles. Prescribed and fixed bodies are the scene's geometry and never leave.
-// Outflows are bidirectional: where a pressure outlet's lane flux turns inwards (a vortex
-// leaving, or a pressure drop that drives fluid in through the outlet), the buffer particle
-// that crosses the inner face back becomes a fluid particle and a copy enters the lane one
-// buffer length downstream, at the outer face, so the buffer stays full instead of emptying
-// from its far end (the inflow's recycling run backwards; SPHinXsys' bidirectional buffers
-// likewise inject and delete in both directions). The outflow's count is net: particles out
-// minus particles in.
+// Pressure outlets are bidirectional: where the flow turns inwards (a vortex leaving, or a
+// pressure drop that draws fluid in through the outlet), buffer particles that cross the inner
+// face back become fluid, and a lane whose particles move inwards gets a new particle one
+// spacing beyond its outermost one once the gap to the far face reaches that spacing
+// (dx (rho0 / rho)^(1/d) at the outlet's density), so the buffer stays full instead of
+// emptying from its far end. Filling gaps, rather than copying each particle that crosses
+// back, creates no mass where a particle crosses the inner face to and fro. The outflow's
+// count is net: particles out minus particles in.
 // New particles get ids from ParticleLedger (deterministic on any rank count).
 //
 // The fluid's state next to a face is read at one sample point per lane, r_c inside the
@@ -52,8 +53,10 @@
 // Not supported: fluid entering an inflow buffer against the flow (it stays fluid),
 // directions that are not along a coordinate axis.
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -127,6 +130,7 @@ class OpenBoundaries {
                                   std::vector<std::int64_t>* lost = nullptr) {
     parents_.clear();
     parent_zone_.clear();
+    parent_shift_.clear();
     doomed_.clear();
     std::fill(tally_.begin(), tally_.end(), 0);
     for (std::size_t i = 0; i < s_.owned(); ++i) {
@@ -150,18 +154,17 @@ class OpenBoundaries {
           zone_[i] = 0;
           parents_.push_back(static_cast<std::uint32_t>(i));
           parent_zone_.push_back(z);
+          parent_shift_.push_back(-o.length());  // one buffer length upstream
           ++tally_[z - 1u];
         }
       } else if (xi >= o.outer_xi()) {  // out of the run
         doomed_.push_back(static_cast<std::uint32_t>(i));
         ++tally_[z - 1u];
-      } else if (xi <= o.inner_xi()) {  // back into the fluid; a copy refills the far end
+      } else if (xi <= o.inner_xi()) {  // back into the fluid
         zone_[i] = 0;
-        parents_.push_back(static_cast<std::uint32_t>(i));
-        parent_zone_.push_back(z);
-        --tally_[z - 1u];
       }
     }
+    fill_far_ends(comm);
     // The bodies' counts ride in the ledger's one collective behind the zones' tallies.
     if (lost) tally_.insert(tally_.end(), lost->begin(), lost->end());
     const auto totals = ledger_.apply(s_, parents_, doomed_, tally_, comm);
@@ -174,10 +177,7 @@ class OpenBoundaries {
       const std::size_t i = totals.first_new + k;
       const std::uint8_t z = parent_zone_[k];
       zone_[i] = z;
-      const OpenBoundaryZone<D>& o = zones_[z - 1u];
-      // One buffer length back against the particle's crossing: upstream of an inflow's
-      // inner face, downstream of an outflow's.
-      s_.x[i] += (o.inflow() ? -o.length() : o.length()) * o.normal();
+      s_.x[i] += parent_shift_[k] * zones_[z - 1u].normal();
     }
     for (std::size_t b = 0; b < zones_.size(); ++b) through_[b] += tally_[b];
     set_prescribed_velocities(t, transport);
@@ -259,6 +259,48 @@ class OpenBoundaries {
         return static_cast<std::uint8_t>(b + 1);
     }
     return 0;
+  }
+
+  // Backflow through pressure outlets: in each lane whose outermost buffer particle moves
+  // inwards, that particle spawns a new one a spacing further out once the gap to the far face
+  // has reached the spacing. The outermost particle of a lane is found over all ranks (one
+  // max-reduction); every particle at the maximum spawns, so which ones do does not depend on
+  // the decomposition. The sign of the flow is read from the particle's velocity (the lane's
+  // flux set it), which the checkpoint carries. Collective when the case has a pressure outlet.
+  void fill_far_ends(const Comm& comm) {
+    if (lane_far_.empty()) {
+      for (const auto& o : zones_)
+        if (!o.inflow() && !o.prescribed()) lane_far_.assign(lane_value_.size(), 0.0);
+      if (lane_far_.empty()) return;
+    }
+    const auto in_pressure_outlet = [&](std::size_t i) {
+      const std::uint8_t z = zone_[i];
+      return z != 0 && s_.kind[i] == Kind::kFluid && !zones_[z - 1u].inflow() &&
+             !zones_[z - 1u].prescribed();
+    };
+    std::fill(lane_far_.begin(), lane_far_.end(), std::numeric_limits<double>::lowest());
+    for (std::size_t i = 0; i < s_.owned(); ++i) {
+      if (!in_pressure_outlet(i)) continue;
+      const OpenBoundaryZone<D>& o = zones_[zone_[i] - 1u];
+      double& far = lane_far_[lane_offset_[zone_[i] - 1u] + o.lane_of(s_.x[i])];
+      far = std::max(far, o.xi(s_.x[i]));
+    }
+    comm.max_inplace(lane_far_);
+    for (std::size_t i = 0; i < s_.owned(); ++i) {
+      if (!in_pressure_outlet(i)) continue;
+      const std::uint8_t z = zone_[i];
+      const OpenBoundaryZone<D>& o = zones_[z - 1u];
+      const double xi = o.xi(s_.x[i]);
+      if (xi != lane_far_[lane_offset_[z - 1u] + o.lane_of(s_.x[i])] ||
+          s_.v[i].dot(o.normal()) >= 0.0)
+        continue;
+      const double spacing = o.dx() * std::pow(o.rho0() / s_.rho[i], 1.0 / static_cast<double>(D));
+      if (o.outer_xi() - xi < spacing) continue;
+      parents_.push_back(static_cast<std::uint32_t>(i));
+      parent_zone_.push_back(z);
+      parent_shift_.push_back(spacing);
+      --tally_[z - 1u];
+    }
   }
 
   // A rigid particle of a free body follows the fluid's rule: it enters an outflow buffer
@@ -346,8 +388,10 @@ class OpenBoundaries {
   std::vector<std::int64_t> through_, tally_;
   std::vector<std::size_t> lane_offset_;
   std::vector<double> lane_value_, lane_sums_;
+  std::vector<double> lane_far_;  // xi of each pressure-outlet lane's outermost particle
   std::vector<std::uint32_t> parents_, doomed_;
   std::vector<std::uint8_t> parent_zone_;
+  std::vector<double> parent_shift_;  // along n, from the parent to its copy
 };
 
 }  // namespace sph

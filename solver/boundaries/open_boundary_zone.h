@@ -41,6 +41,7 @@ class OpenBoundaryZone {
   const Vec<D>& normal() const { return n_; }
   // Buffer length along n (a whole number of dx).
   double length() const { return length_; }
+  double dx() const { return dx_; }
 
   // Coordinate along the flow, xi = x . n.
   double xi(const Vec<D>& x) const { return sign_ * x[axis_]; }

@@ -657,10 +657,10 @@ TEST(RankConsistency, OpenChannelResumesFromCheckpointOnAnyRankCount) {
   check_resume("open", open_channel(), 1500, 700);
 }
 
-// The channel drawn backwards through its pressure outlet: the outlet's buffer recycles its
-// lanes (new particles, new ids, at the far face) on whichever rank owns them; 1/2/4 ranks and
+// The channel drawn backwards through its pressure outlet: the outlet's buffer fills its
+// lanes at the far face (new particles, new ids) on whichever rank owns them; 1/2/4 ranks and
 // resumed from a checkpoint at step 751.
-TEST(RankConsistency, BackflowThroughAnOutletRecyclesIdentically) {
+TEST(RankConsistency, BackflowThroughAnOutletFillsIdentically) {
   auto c = test::backflow_channel(0.5);
   check_rank_counts("backflow", c, 1500);
   c.mutable_output()->set_series_interval(1e-12);  // every step: rows after the checkpoint

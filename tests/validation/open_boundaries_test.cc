@@ -209,7 +209,7 @@ TEST(OpenBoundaries, ChannelWithVelocityOutletKeepsItsMass) {
 TEST(OpenBoundaries, FluidDrawnInThroughAPressureOutlet) {
   // Backflow: the velocity outlet on the right draws the fluid out at the parabola's rate and
   // the fluid comes in through the pressure outlet on the left (p = 0, facing -x), whose
-  // buffer recycles its lanes backwards (open_boundaries.h). Before, that buffer emptied
+  // buffer fills its lanes from the far face (open_boundaries.h). Before, that buffer emptied
   // from its far end and the channel drained. The steady flow is the same Poiseuille flow,
   // and the left boundary's net count falls at the flow rate (particles come in, none go).
   const auto c = test::backflow_channel(
