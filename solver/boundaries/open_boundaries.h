@@ -10,8 +10,10 @@
 //  - velocity: an INFLOW and a velocity outlet prescribe u = U phi(lane) ramp(t) n; a pressure
 //    outlet takes the fluid's normal mass flux next to the outlet, lane by lane (zero normal
 //    gradient), divided by the buffer particle's density: rho_b u_b = (rho u.n)_fluid, so
-//    the buffer's particles spread out to the outlet density as they leave the fluid.
-//    Buffer particles move along n only;
+//    the buffer's particles spread out to the outlet density as they leave the fluid; plus
+//    (p_fluid - p_out) / (rho_b c), which keeps the outgoing acoustic characteristic and so
+//    pulls the fluid's pressure level to the outlet's (after_forces). Buffer particles move
+//    along n only;
 //  - pressure: where the velocity is prescribed the pressure has zero normal gradient (the
 //    fluid's next to the face plus the hydrostatic part rho0 b.(x - x_sample), Adami 2012
 //    eq. 27 without the wall's acceleration); a pressure outlet holds `pressure`. The density
@@ -94,7 +96,8 @@ class OpenBoundaries {
       lanes += z.lane_count();
     }
     lane_value_.assign(lanes, 0.0);
-    lane_sums_.assign(2 * lanes, 0.0);
+    lane_pressure_.assign(lanes, 0.0);
+    lane_sums_.assign(4 * lanes, 0.0);
   }
 
   // 0: fluid; b + 1: in the buffer of boundary b.
@@ -213,7 +216,7 @@ class OpenBoundaries {
   void after_forces(const NeighborList<D>& nl, const CellGrid<D>& grid, const CellBox<D>& mine,
                     const Column<Vec<D>>* noslip, const Column<std::uint8_t>* free_slip,
                     Column<Vec<D>>* background, Column<double>* temperature,
-                    Column<double>* concentration, const Comm& comm) {
+                    Column<double>* concentration, const Vec<D>& body, const Comm& comm) {
     sample(nl, grid, mine, comm, false, noslip, free_slip);
     for (std::size_t i = 0; i < s_.owned(); ++i) {
       const std::uint8_t z = zone_[i];
@@ -221,8 +224,19 @@ class OpenBoundaries {
       const OpenBoundaryZone<D>& o = zones_[z - 1u];
       s_.a[i] = Vec<D>::Zero();
       if (background) (*background)[i] = Vec<D>::Zero();
-      if (!o.prescribed())  // the lane's mass flux at the outlet density
-        s_.v[i] = (lane_value_[lane_offset_[z - 1u] + o.lane_of(s_.x[i])] / s_.rho[i]) * o.normal();
+      if (!o.prescribed()) {
+        // The lane's mass flux at the outlet density, plus the outgoing characteristic's
+        // velocity jump (p_f - p_out) / (rho c): the acoustic Riemann invariant
+        // u_n + p / (rho c) carried out of the fluid is kept, so a fluid above the outlet
+        // pressure drains faster and one below it draws fluid in (a non-reflecting
+        // pressure condition, Thompson 1987 J. Comput. Phys. 68:1 in its 1D acoustic form),
+        // instead of any pressure level being steady. p_f is the fluid's at the sample point
+        // plus the hydrostatic part rho0 b.(x - x_sample).
+        const std::size_t lane = o.lane_of(s_.x[i]), l = lane_offset_[z - 1u] + lane;
+        const double p_f = lane_pressure_[l] + o.rho0() * body.dot(s_.x[i] - o.sample_point(lane));
+        const double rho_c = s_.rho[i] * fluids_[s_.material[i]].c;
+        s_.v[i] = (lane_value_[l] / s_.rho[i] + (p_f - o.outlet_pressure()) / rho_c) * o.normal();
+      }
       if (o.inflow()) {
         if (temperature) (*temperature)[i] = o.temperature();
         if (concentration) (*concentration)[i] = o.concentration();
@@ -347,7 +361,7 @@ class OpenBoundaries {
         bool inside = true;
         for (int a = 0; a < D; ++a) inside = inside && c[a] >= 0 && c[a] < grid.n[a];
         if (!inside || !mine.contains(c)) continue;
-        double sv = 0, sw = 0;
+        double sv = 0, sw = 0, sp = 0, spw = 0;
         nl.for_each_near(c, [&](std::uint32_t j) {
           const double w = k_.W((xp - s_.x[j]).norm());
           if (w == 0.0) return;
@@ -356,15 +370,19 @@ class OpenBoundaries {
             const double vw = s_.m[j] / s_.rho[j] * w;
             sv += vw * (pressure ? s_.p[j] : s_.rho[j] * s_.v[j].dot(n));
             sw += vw;
+            sp += vw * s_.p[j];
+            spw += vw;
           } else if (!pressure && noslip && !(free_slip && (*free_slip)[j])) {
             const double vw = wall_volume_ * w;
             sv += vw * s_.rho[j] * (*noslip)[j].dot(n);
             sw += vw;
           }
         });
-        const std::size_t k = 2 * (lane_offset_[b] + lane);
+        const std::size_t k = 4 * (lane_offset_[b] + lane);
         lane_sums_[k] = sv;
         lane_sums_[k + 1] = sw;
+        lane_sums_[k + 2] = sp;
+        lane_sums_[k + 3] = spw;
       }
     }
     if (!any) return;
@@ -372,9 +390,11 @@ class OpenBoundaries {
     comm.sum_inplace(lane_sums_);
     for (std::size_t b = 0; b < zones_.size(); ++b) {
       if (zones_[b].prescribed() != pressure) continue;
-      for (std::size_t l = lane_offset_[b]; l < lane_offset_[b] + zones_[b].lane_count(); ++l)
-        lane_value_[l] =
-            lane_sums_[2 * l + 1] > 0 ? lane_sums_[2 * l] / lane_sums_[2 * l + 1] : 0.0;
+      for (std::size_t l = lane_offset_[b]; l < lane_offset_[b] + zones_[b].lane_count(); ++l) {
+        const double* sums = &lane_sums_[4 * l];
+        lane_value_[l] = sums[1] > 0 ? sums[0] / sums[1] : 0.0;
+        lane_pressure_[l] = sums[3] > 0 ? sums[2] / sums[3] : zones_[b].outlet_pressure();
+      }
     }
   }
 
@@ -387,7 +407,7 @@ class OpenBoundaries {
   ParticleLedger<D> ledger_;
   std::vector<std::int64_t> through_, tally_;
   std::vector<std::size_t> lane_offset_;
-  std::vector<double> lane_value_, lane_sums_;
+  std::vector<double> lane_value_, lane_pressure_, lane_sums_;
   std::vector<double> lane_far_;  // xi of each pressure-outlet lane's outermost particle
   std::vector<std::uint32_t> parents_, doomed_;
   std::vector<std::uint8_t> parent_zone_;

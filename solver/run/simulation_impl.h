@@ -567,7 +567,8 @@ template <int D, class K>
 void Simulation<D, K>::apply_open_boundaries_after_forces() {
   Timer tm(timer(OpenBoundaries<D, K>::kName));
   open_->after_forces(nl_, grid_, halo_.my_box(), walls_ ? &walls_->noslip_velocity() : nullptr,
-                      free_slip_, background_, temperature_, concentration_, comm_);
+                      free_slip_, background_, temperature_, concentration_, fluid_body_force(t_),
+                      comm_);
 }
 
 template <int D, class K>
