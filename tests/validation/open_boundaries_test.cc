@@ -250,6 +250,34 @@ TEST(OpenBoundaries, FluidDrawnInThroughAPressureOutlet) {
   EXPECT_NEAR(r.p_mid, -1.2, 0.12);  // p = 0 at the left face (measured -1.149; -5.27 before)
 }
 
+TEST(OpenBoundaries, ChannelDrivenByTwoPressureOutlets) {
+  // No prescribed velocity at all: pressure outlets at both ends, p = 2.4 on the left (facing
+  // -x, so the fluid comes in through it) and 0 on the right, started from rest. Poiseuille's
+  // dp/dx = -12 eta U / H^2 = -1.2 over the channel's length 2 gives the mean velocity U = 1,
+  // so the flow is the same as with the parabolic inflow, set by the pressures alone. Started
+  // at once from rest, it approaches that flow as exp(-pi^2 nu t / H^2) (0.25% left at t = 6),
+  // so it is measured over 6 <= t <= 8.
+  // Before the outlets took backflow and kept their characteristic, the left buffer emptied
+  // and the fluid did not move (mass flow rate 0.06 at t = 5).
+  auto c = test::load_case("channel_inflow_outflow_2d");
+  auto* in = c.mutable_open_boundaries(0);
+  in->set_kind(v1::OUTFLOW);
+  in->mutable_direction()->set_x(-1);
+  in->clear_mean_velocity();
+  in->clear_profile();
+  in->clear_ramp_time();
+  in->set_pressure(2.4);
+  const Measured r = run_channel(c, "open_channel_pressure_driven", 8.0, 6.0);
+  EXPECT_LT(r.mean_err, 0.01);
+  EXPECT_LT(r.worst_bin, 0.02);
+  EXPECT_NEAR(r.q_mid, 1.0, 0.01);
+  EXPECT_NEAR(r.q_out, 1.0, 0.015);
+  EXPECT_NEAR(r.q_in, -r.q_out, 0.005);
+  EXPECT_GE(r.lo, 0.99 * r.n0);
+  EXPECT_LE(r.hi, 1.02 * r.n0);
+  EXPECT_NEAR(r.p_mid, 1.2, 0.06);  // halfway between the two outlets' pressures
+}
+
 TEST(OpenBoundaries, AFreeBodyLeavesThroughTheOutletPieceByPiece) {
   // A neutrally buoyant disk carried down the channel passes the pressure outlet
   // (cases/channel_body_outflow_2d.textproto): its particles leave the run at the outlet's
