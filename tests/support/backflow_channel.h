@@ -8,15 +8,20 @@
 
 namespace sph::test {
 
-inline v1::Case backflow_channel(double ramp) {
-  auto c = load_case("channel_inflow_outflow_2d");
+// The channel's inflow (its left boundary) made a pressure outlet at `pressure`, facing -x.
+inline void make_inlet_a_pressure_outlet(v1::Case& c, double pressure) {
   auto* in = c.mutable_open_boundaries(0);
   in->set_kind(v1::OUTFLOW);
   in->mutable_direction()->set_x(-1);
   in->clear_mean_velocity();
   in->clear_profile();
   in->clear_ramp_time();
-  in->set_pressure(0);
+  in->set_pressure(pressure);
+}
+
+inline v1::Case backflow_channel(double ramp) {
+  auto c = load_case("channel_inflow_outflow_2d");
+  make_inlet_a_pressure_outlet(c, 0);
   auto* out = c.mutable_open_boundaries(1);
   out->clear_pressure();
   out->set_profile(v1::PARABOLIC);

@@ -260,13 +260,7 @@ TEST(OpenBoundaries, ChannelDrivenByTwoPressureOutlets) {
   // Before the outlets took backflow and kept their characteristic, the left buffer emptied
   // and the fluid did not move (mass flow rate 0.06 at t = 5).
   auto c = test::load_case("channel_inflow_outflow_2d");
-  auto* in = c.mutable_open_boundaries(0);
-  in->set_kind(v1::OUTFLOW);
-  in->mutable_direction()->set_x(-1);
-  in->clear_mean_velocity();
-  in->clear_profile();
-  in->clear_ramp_time();
-  in->set_pressure(2.4);
+  test::make_inlet_a_pressure_outlet(c, 2.4);
   const Measured r = run_channel(c, "open_channel_pressure_driven", 8.0, 6.0);
   EXPECT_LT(r.mean_err, 0.01);
   EXPECT_LT(r.worst_bin, 0.02);
