@@ -722,7 +722,7 @@ TEST(RankConsistency, ABodyHalfwayThroughTheOutletResumesFromCheckpoint) {
   auto c = test::load_case("channel_body_outflow_2d");
   c.mutable_output()->set_series_interval(1e-12);  // every step: rows after the checkpoint
   constexpr int kAt = 650;                         // t = 0.37: first particle out at 0.32
-  check_resume("body_outflow", c, 800, kAt);
+  check_resume("body_outflow", c, 900, kAt);
   if (world_rank() != 0) return;
   const std::string dir = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_body_outflow_resume_";
   test::ResultReader rr(dir + "reference/result.h5");
