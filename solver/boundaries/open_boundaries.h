@@ -98,6 +98,8 @@ class OpenBoundaries {
     lane_value_.assign(lanes, 0.0);
     lane_pressure_.assign(lanes, 0.0);
     lane_sums_.assign(4 * lanes, 0.0);
+    for (const auto& z : zones_)
+      if (!z.inflow() && !z.prescribed()) lane_far_.assign(lanes, 0.0);
   }
 
   // 0: fluid; b + 1: in the buffer of boundary b.
@@ -282,11 +284,7 @@ class OpenBoundaries {
   // the decomposition. The sign of the flow is read from the particle's velocity (the lane's
   // flux set it), which the checkpoint carries. Collective when the case has a pressure outlet.
   void fill_far_ends(const Comm& comm) {
-    if (lane_far_.empty()) {
-      for (const auto& o : zones_)
-        if (!o.inflow() && !o.prescribed()) lane_far_.assign(lane_value_.size(), 0.0);
-      if (lane_far_.empty()) return;
-    }
+    if (lane_far_.empty()) return;  // no pressure outlet
     const auto in_pressure_outlet = [&](std::size_t i) {
       const std::uint8_t z = zone_[i];
       return z != 0 && s_.kind[i] == Kind::kFluid && !zones_[z - 1u].inflow() &&
@@ -408,7 +406,8 @@ class OpenBoundaries {
   std::vector<std::int64_t> through_, tally_;
   std::vector<std::size_t> lane_offset_;
   std::vector<double> lane_value_, lane_pressure_, lane_sums_;
-  std::vector<double> lane_far_;  // xi of each pressure-outlet lane's outermost particle
+  // xi of each pressure-outlet lane's outermost particle (empty without a pressure outlet)
+  std::vector<double> lane_far_;
   std::vector<std::uint32_t> parents_, doomed_;
   std::vector<std::uint8_t> parent_zone_;
   std::vector<double> parent_shift_;  // along n, from the parent to its copy
