@@ -1,11 +1,13 @@
 // The Magnus effect benchmark of Reder et al. 2021 sec. 3.2 at CI size: the cylinder of
 // cases/magnus_cylinder_2d.textproto (motion_type PRESCRIBED: held in place, turned clockwise
 // at gamma = omega D / (2 U) = 1) in a stream at Re 200, at D/dx = 5 (dx = 0.2) to t = 10 D/U.
-// Mittal & Kumar 2003 give a mean lift c_l = 2.532 at gamma = 1 (Reder Table 3). The lift
-// measured here is well short of it at every resolution tried, while the torque on a turning
-// body is right (tests/validation/turning_body_torque_test.cc; the flow near the turning wall
-// is in doubt: tests/validation/reports/magnus.md), so the test guards the sign and the order
-// of magnitude, c_l / 2.532 in [0.25, 1.05], and that the fluid's torque opposes the spin.
+// Mittal & Kumar 2003 give a mean lift c_l = 2.532 at gamma = 1 (Reder Table 3). The case
+// sets the fluid's pressure level (EOS background pressure and outlet pressure) to
+// 0.1 rho0 c^2; at a zero level the suction on the fast side is negative pressure and the lift
+// came out 60-75% short. At this coarse spacing the lift is about 9% short, and a change of
+// the time steps alone moves it by some 10% (at D/dx = 10 it is within the digest's 5%:
+// tests/validation/reports/magnus.md), so the test asks for c_l / 2.532 in [0.7, 1.15] and
+// that the fluid's torque opposes the spin.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -61,8 +63,8 @@ TEST(Magnus, RotatingCylinderLiftsTowardsItsFasterSide) {
       "%.4f, centre moved %.1e\n",
       cl, cl_ref, 100 * (cl / cl_ref - 1), cd, tq, moved);
   EXPECT_EQ(moved, 0.0);
-  EXPECT_GT(cl / cl_ref, 0.25);
-  EXPECT_LT(cl / cl_ref, 1.05);
+  EXPECT_GT(cl / cl_ref, 0.7);
+  EXPECT_LT(cl / cl_ref, 1.15);
   EXPECT_LT(tq, 0.0);  // the fluid brakes the spinning cylinder
 }
 
