@@ -4,7 +4,7 @@
 // Mittal & Kumar 2003 give a mean lift c_l = 2.532 at gamma = 1 (Reder Table 3). The case
 // sets the fluid's pressure level (EOS background pressure and outlet pressure) to
 // 0.1 rho0 c^2; at a zero level the suction on the fast side is negative pressure and the lift
-// came out 60-75% short. At this coarse spacing the lift is about 9% short, and a change of
+// came out 45-75% short. At this coarse spacing the lift is about 9% short, and a change of
 // the time steps alone moves it by some 10% (at D/dx = 10 it is within the digest's 5%:
 // tests/validation/reports/magnus.md), so the test asks for c_l / 2.532 in [0.7, 1.15] and
 // that the fluid's torque opposes the spin.

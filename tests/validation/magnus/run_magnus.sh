@@ -65,8 +65,8 @@ for res in ${SPHD_MAGNUS_RES:-10}; do
   done
 done
 # The pressure level: D/dx = 5, the lift at gamma = 1 over 5 <= t <= 10 and the drag at
-# gamma = 0 over 10 <= t <= 20 for levels from 0 to 30 rho U^2 (about 15 s each), with a
-# snapshot every D/U for the fluid next to the turning wall.
+# gamma = 0 over 10 <= t <= 20 for levels from 0 to 30 rho U^2 (about 15 s each), the lift runs
+# with a snapshot every D/U for the lowest pressure.
 for chi in 0 1 2 4 6 10 30; do
   SNAPSHOT_INTERVAL=1 run_case level_g1_p$chi 5 1 10 "$chi"
   run_case level_g0_p$chi 5 0 20 "$chi"
