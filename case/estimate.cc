@@ -277,7 +277,11 @@ CaseEstimate estimate_case(const v1::Case& c) {
   Point3 b = to_point(c.body_force());
   if (c.has_gravity()) b += to_point(c.gravity().acceleration());
   if (b.norm() > 0) limit(f * 0.25 * std::sqrt(h / b.norm()), "body force 0.25 sqrt(h/|b|)");
-  if (c.time().fixed_dt() > 0) {
+  if (c.time().has_quasi_static() && fixed_time_step(c) > 0) {
+    if (std::isfinite(dt)) e.inner_steps = std::ceil(c.time().end_time() / dt);
+    dt = fixed_time_step(c);
+    e.dt_limited_by = "time.quasi_static.load_step";
+  } else if (c.time().fixed_dt() > 0) {
     dt = c.time().fixed_dt();
     e.dt_limited_by = "time.fixed_dt";
   }
@@ -305,6 +309,11 @@ CaseEstimate estimate_case(const v1::Case& c) {
   const double per_particle = (d == 2 ? 200.0 : 280.0) + per_pair * neighbours;
   e.bytes = 1.15 * e.total() * per_particle;
   return e;
+}
+
+double fixed_time_step(const v1::Case& c) {
+  if (c.time().has_quasi_static()) return c.time().quasi_static().load_step();
+  return c.time().fixed_dt();
 }
 
 }  // namespace sph

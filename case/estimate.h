@@ -21,8 +21,12 @@ struct CaseEstimate {
   double total() const {
     return fluid_particles + wall_particles + rigid_particles + elastic_particles;
   }
-  double initial_dt = 0;      // [s]
-  double steps = 0;           // end_time / initial_dt (adaptive runs may differ)
+  double initial_dt = 0;  // [s]
+  double steps = 0;       // end_time / initial_dt (adaptive runs may differ)
+  // Quasi-static loading (time.quasi_static): steps are the outer (load) steps, and each takes
+  // at most load_step / (the elastic bound at rest) inner steps; inner_steps is that total,
+  // what plain small steps would take. The relaxation ends most inner loops well before.
+  double inner_steps = 0;
   double bytes = 0;           // particle storage + neighbour lists, all ranks
   std::string dt_limited_by;  // which criterion is the smallest
 };
@@ -42,6 +46,9 @@ double kernel_support_radius(const v1::Case& c);
 // open boundaries (particles come and go every few steps), and at most what leaves every
 // periodic axis of the domain two cells of r_c + skin (no pair through two images).
 double neighbor_skin(const v1::Case& c);
+// The step a run takes whatever its state: time.fixed_dt, or the load step of quasi-static
+// loading; 0 for an adaptive step.
+double fixed_time_step(const v1::Case& c);
 // How the run keeps the kernel values of its pairs: as the case asks, and by default the
 // compact table (single precision), which every pass over pairs reads as it is
 // (solver/core/pair_access.h), except in a case with Riemann dissipation: its passes need r

@@ -25,6 +25,28 @@ void Validator::run_settings() {
           "is required when the case has no fluid or elastic body (the bound of Fuchs 2021 eq. "
           "41 needs a sound speed)");
   if (t.max_steps() < 0) error("time.max_steps", "must be >= 0");
+  if (t.has_quasi_static()) {
+    const auto& q = t.quasi_static();
+    positive(q.load_step(), "time.quasi_static.load_step");
+    positive(q.damping(), "time.quasi_static.damping");
+    positive(q.kinetic_energy_threshold(), "time.quasi_static.kinetic_energy_threshold");
+    if (q.load_step() > 0 && t.end_time() > 0 && q.load_step() > t.end_time())
+      error("time.quasi_static.load_step",
+            "must be at most time.end_time (" + num(t.end_time()) + ")");
+    // Dynamic relaxation damps the elastic bodies alone; a fluid would see them move by load
+    // steps far beyond its own bound.
+    if (c_.fluids_size() > 0 || c_.phase_transitions_size() > 0)
+      error("time.quasi_static", "is for elastic bodies alone: the case has fluid");
+    if (c_.bodies_size() > 0)
+      error("time.quasi_static", "is for elastic bodies alone: the case has rigid bodies");
+    if (c_.elastic_bodies_size() == 0)
+      error("time.quasi_static", "needs at least one elastic body");
+    if (t.fixed_dt() > 0)
+      error("time.fixed_dt", "must be unset with time.quasi_static (its load_step is the step)");
+    if (t.subcycle_elastic_bodies())
+      error("time.subcycle_elastic_bodies",
+            "must be unset with time.quasi_static (the inner steps take its place)");
+  }
   const auto& o = c_.output();
   non_negative(o.interval(), "output.interval");
   // Every snapshot time is stored up front and each snapshot is a full particle dump.

@@ -2,6 +2,7 @@
 #include <google/protobuf/struct.pb.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <thread>
@@ -51,6 +52,7 @@ int print_dry_run(const GlobalOptions& g, const v1::Case& c, const std::string& 
     f["initial_dt"].set_number_value(e.initial_dt);
     f["dt_limited_by"].set_string_value(e.dt_limited_by);
     f["estimated_steps"].set_number_value(e.steps);
+    if (c.time().has_quasi_static()) f["estimated_inner_steps"].set_number_value(e.inner_steps);
     f["estimated_bytes"].set_number_value(e.bytes);
     std::printf("%s\n", to_json(s).c_str());
     return kOk;
@@ -68,6 +70,11 @@ int print_dry_run(const GlobalOptions& g, const v1::Case& c, const std::string& 
         100.0 * (1.0 - e.elastic_particles / e.elastic_isotropic_particles));
   std::printf("  time step:  %.4g s at rest (%s)\n", e.initial_dt, e.dt_limited_by.c_str());
   std::printf("  steps:      about %.0f to t = %g s\n", e.steps, c.time().end_time());
+  if (c.time().has_quasi_static())
+    std::printf(
+        "  quasi-static: %.0f load steps, each of at most %.0f inner steps (%.0f in all, what "
+        "plain steps would take); the relaxation ends most sooner\n",
+        e.steps, e.steps > 0 ? std::ceil(e.inner_steps / e.steps) : 0.0, e.inner_steps);
   std::printf("  memory:     about %s over all ranks\n", format_bytes(e.bytes).c_str());
   return kOk;
 }

@@ -44,6 +44,17 @@
 // its step (P-I eq. 34); both went unstable for a stiff plate under water
 // (docs/elastic_solids.md).
 //
+// Quasi-static loading (TimeControl.quasi_static; thesis sec. 3.6, P-III sec. 4, digest sec.
+// 6.2; docs/quasi_static.md): the run's step is the outer (load) step; the bodies take the
+// sub-step path with no fluid force, and kAfterDrift relaxes them instead of sub-stepping:
+// constraints and gravity jump to the step's end (the load increment; constrained particles at
+// rest), then inner kick-drift-kick steps of eq. 33 with the relaxation damping
+// (solver/elastic/relaxation_damping.h) after each drift and kinetic damping (every velocity
+// to zero at a peak of the kinetic energy), until such a peak is below the threshold, or the
+// inner steps fill the outer step (the thesis' loop: time advances either way). The series
+// "elastic/relaxation_steps" and "elastic/unrelaxed_load_steps" count the inner steps and the outer
+// steps that ended unrelaxed.
+//
 // Time step (thesis eq. 33, P-I sec. 3.4):
 //   dt <= cfl_factor 0.6 min(sqrt(h / |a|max), h / (|v|max + c_s)),
 // with c_s = sqrt(K / rho0) the largest of the bodies' materials and the maxima over the free
@@ -102,6 +113,7 @@
 #include "solver/elastic/elastic_law.h"
 #include "solver/elastic/hourglass_control.h"
 #include "solver/elastic/j2_plasticity.h"
+#include "solver/elastic/relaxation_damping.h"
 #include "solver/elastic/total_lagrangian.h"
 #include "solver/parallel/exact_sum.h"
 #include "solver/physics/body_force.h"
@@ -121,6 +133,10 @@ class ElasticSolid final : public Unit<D> {
   static constexpr double kTimeStepFactor = 0.6;
   // Sub-steps in one fluid step above which the run stops (a solid blowing up).
   static constexpr int kMaxSubsteps = 10000;
+  // Quasi-static loading: the constraints' pace over a load step's ramp, as a fraction of the
+  // bodies' sound speed (the strain they impose as they go; a steel bar pulled at 3.5e-4 c_s
+  // follows the homogeneous plastic curve within 0.4%: docs/plasticity.md).
+  static constexpr double kLoadRampSpeed = 1e-4;
 
   explicit ElasticSolid(const UnitBuildContext<D>& b);
 
@@ -170,6 +186,12 @@ class ElasticSolid final : public Unit<D> {
   void internal_forces(StepContext<D>& ctx, const Vec<D>* v);
   void hold_fluid_force(StepContext<D>& ctx);
   void substeps(StepContext<D>& ctx);
+  // Quasi-static loading: one outer step's load increment and relaxation.
+  void relax(StepContext<D>& ctx);
+  // The bodies' kinetic energy on the solid's velocities (free particles, exact sum).
+  double kinetic_energy(const ParticleStore<D>& s, const Comm& comm) const;
+  // The farthest any constrained particle moves between t0 and t1 (all ranks).
+  double constraint_travel(const ParticleStore<D>& s, const Comm& comm, double t0, double t1) const;
   Vec<D> substep_acceleration(const ParticleStore<D>& s, std::size_t i, const Vec<D>& g) const;
   void substep_bound(const ParticleStore<D>& s, const Comm& comm, double t);
   void place_constrained(ParticleStore<D>& s, Column<Vec<D>>& v, double t);
@@ -228,6 +250,11 @@ class ElasticSolid final : public Unit<D> {
   Column<Vec<D>>* internal_ = nullptr;
   Column<Vec<D>>* shown_a_ = nullptr;
   double substep_dt_ = std::numeric_limits<double>::infinity();  // eq. 33 at the last sub-step
+  // Quasi-static loading only (damping 0 and null otherwise): eta, the kinetic energy threshold,
+  // the damped velocities (scratch), inner steps so far and outer steps that ended unrelaxed.
+  double relax_damping_ = 0, relax_threshold_ = 0;
+  Column<Vec<D>>* damped_v_ = nullptr;
+  std::int64_t relax_steps_ = 0, unrelaxed_steps_ = 0;
   Column<Mat<D>>& F_;                // deformation gradient of the last step (scratch)
   Column<double>* displacement_[D];  // x - X per axis (scratch, output)
   Column<double>& von_mises_;        // (scratch, output)
@@ -286,7 +313,13 @@ ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
   for (std::size_t k = 0; k < b.materials.size(); ++k)
     if (b.materials[k].rho0 > 0) inv_rho0_[k] = 1.0 / b.materials[k].rho0;
   const v1::Case& c = b.c;
-  if (c.time().subcycle_elastic_bodies()) {
+  if (c.time().has_quasi_static()) {
+    relax_damping_ = c.time().quasi_static().damping();
+    relax_threshold_ = c.time().quasi_static().kinetic_energy_threshold();
+    damped_v_ = &b.particles.template add<Vec<D>>("elastic_damped_velocity", kName, false);
+    damped_v_->set_ghost(false);
+  }
+  if (c.time().subcycle_elastic_bodies() || c.time().has_quasi_static()) {
     solid_v_ = &b.particles.template add<Vec<D>>("elastic_velocity", kName, true);
     held_force_ = &b.particles.template add<Vec<D>>("elastic_held_fluid_force", kName, true);
     internal_ = &b.particles.template add<Vec<D>>("elastic_internal_force", kName, true);
@@ -401,7 +434,9 @@ void ElasticSolid<D, K>::run(StepPhase phase, StepContext<D>& ctx) {
       hold_constrained(ctx.particles);
       break;
     case StepPhase::kAfterDrift:
-      if (solid_v_ && ctx.dt > 0)
+      if (solid_v_ && ctx.dt > 0 && damped_v_)
+        relax(ctx);
+      else if (solid_v_ && ctx.dt > 0)
         substeps(ctx);
       else
         move_constrained(ctx.particles, ctx.t);
@@ -685,16 +720,29 @@ void ElasticSolid<D, K>::sample(ResultFile& result, const StepContext<D>& ctx) {
                  {nc, static_cast<std::uint64_t>(D)});
     }
   }
+  if (damped_v_) {
+    result.put("elastic/relaxation_steps", static_cast<double>(relax_steps_));
+    result.put("elastic/unrelaxed_load_steps", static_cast<double>(unrelaxed_steps_));
+  }
 }
 
 template <int D, class K>
 void ElasticSolid<D, K>::save(CheckpointState& state) const {
   if (solid_v_) state["elastic_solid.substep_dt"] = substep_dt_;
+  if (damped_v_) {
+    state["elastic_solid.relaxation_steps"] = static_cast<double>(relax_steps_);
+    state["elastic_solid.unrelaxed_load_steps"] = static_cast<double>(unrelaxed_steps_);
+  }
 }
 
 template <int D, class K>
 void ElasticSolid<D, K>::load(const CheckpointState& state) {
   if (solid_v_) substep_dt_ = state_value(state, "elastic_solid.substep_dt");
+  if (damped_v_) {
+    relax_steps_ = static_cast<std::int64_t>(state_value(state, "elastic_solid.relaxation_steps"));
+    unrelaxed_steps_ =
+        static_cast<std::int64_t>(state_value(state, "elastic_solid.unrelaxed_load_steps"));
+  }
 }
 
 template <int D, class K>
@@ -803,6 +851,126 @@ void ElasticSolid<D, K>::substeps(StepContext<D>& ctx) {
     s.a[i] = (*shown_a_)[i];
   }
   substep_bound(s, ctx.comm, ctx.t);
+}
+
+template <int D, class K>
+double ElasticSolid<D, K>::kinetic_energy(const ParticleStore<D>& s, const Comm& comm) const {
+  const Column<Vec<D>>& vs = *solid_v_;
+  return exact_sum(
+      1,
+      [&](auto&& emit) {
+        for (std::size_t i = 0; i < s.owned(); ++i)
+          if (s.kind[i] == Kind::kElastic && constraint_[i] < 0)
+            emit(0, 0.5 * s.m[i] * vs[i].squaredNorm());
+      },
+      comm)[0];
+}
+
+template <int D, class K>
+double ElasticSolid<D, K>::constraint_travel(const ParticleStore<D>& s, const Comm& comm, double t0,
+                                             double t1) const {
+  double travel = 0;
+  for (std::size_t k = 0; k < paths_.size(); ++k) {
+    if (paths_[k].is_static()) continue;
+    const auto p0 = paths_[k].pose(t0), p1 = paths_[k].pose(t1);
+    for (std::size_t i = 0; i < s.owned(); ++i) {
+      if (s.kind[i] != Kind::kElastic || constraint_[i] < 0 ||
+          bodies_[body_[i]].first_constraint + static_cast<std::size_t>(constraint_[i]) != k)
+        continue;
+      Point3 X0 = Point3::Zero();
+      for (int a = 0; a < D; ++a) X0[a] = X_[i][a];
+      travel = std::max(travel, (p1.position(X0) - p0.position(X0)).norm());
+    }
+  }
+  return comm.max(travel);
+}
+
+template <int D, class K>
+void ElasticSolid<D, K>::relax(StepContext<D>& ctx) {
+  ParticleStore<D>& s = ctx.particles;
+  const std::size_t n = s.owned();
+  const Kind* kind = s.kind.data();
+  Column<Vec<D>>& vs = *solid_v_;
+  failure_.clear();
+  build_references(ctx);
+  // The slow process of the outer step (thesis sec. 6.2): the constraints move to where they are
+  // at its end, gravity to its value there. Not in one jump: a constrained particle that jumps
+  // by d strains its neighbours by about d / dx at once (1.6% at the grips of a steel bar
+  // stretched in 100 steps), which yields a plastic material there at every load step. The load
+  // follows its path over the ramp time d_max / (kLoadRampSpeed c_s) of inner time instead (at
+  // most the outer step), which strains the body by about kLoadRampSpeed as it goes.
+  const double t0 = ctx.t - ctx.dt;
+  const double ramp =
+      std::min(ctx.dt, constraint_travel(s, ctx.comm, t0, ctx.t) / (kLoadRampSpeed * sound_speed_));
+  const auto load_time = [&](double tau) {
+    return tau >= ramp ? ctx.t : t0 + ctx.dt * (tau / ramp);
+  };
+  // Constrained particles where the load is at inner time tau, moving at the ramp's pace during
+  // it and at rest after.
+  const auto hold_constraints = [&](double tau) {
+    place_constrained(s, vs, load_time(tau));
+    const double pace = tau < ramp ? ctx.dt / ramp : 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (kind[i] == Kind::kElastic && constraint_[i] >= 0) vs[i] *= pace;
+  };
+  hold_constraints(0);
+  ctx.halo.update(s, {&s.x, &vs});
+  internal_forces(ctx, vs.data());
+  substep_bound(s, ctx.comm, ctx.t);
+  const bool viscous = std::any_of(laws_.begin(), laws_.end(),
+                                   [](const ElasticConstants& l) { return l.damping != 0.0; });
+  // The inner loop: kick-drift-kick steps of eq. 33 (P-I eqs. 36-38) with the damping after the
+  // drift, until, after the ramp, a peak of the kinetic energy is below the threshold, or the
+  // inner steps fill the outer step.
+  double tau = 0, previous = 0;
+  bool relaxed = false;
+  while (tau < ctx.dt && !relaxed) {
+    const double ds = std::min(substep_dt_, ctx.dt - tau);
+    Vec<D> g = BodyForce<D>::damping_factor(load_time(tau), gravity_ramp_) * gravity_;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (kind[i] != Kind::kElastic || constraint_[i] >= 0) continue;
+      vs[i] += 0.5 * ds * substep_acceleration(s, i, g);
+      s.x[i] += ds * vs[i];
+    }
+    tau += ds;
+    hold_constraints(tau);
+    ctx.halo.update(s, {&s.x, &vs});
+    relaxation_damping<D>(refs_, n, kind, constraint_.data(), X_.data(), s.m.data(),
+                          s.material.data(), inv_rho0_.data(), relax_damping_ * ds, vs.data(),
+                          damped_v_->data());
+    for (std::size_t i = 0; i < n; ++i) vs[i] = (*damped_v_)[i];
+    // Kelvin-Voigt damping reads the neighbours' dF/dt: their damped velocities.
+    if (viscous) ctx.halo.update(s, {&vs});
+    internal_forces(ctx, vs.data());
+    g = BodyForce<D>::damping_factor(load_time(tau), gravity_ramp_) * gravity_;
+    for (std::size_t i = 0; i < n; ++i)
+      if (kind[i] == Kind::kElastic && constraint_[i] < 0)
+        vs[i] += 0.5 * ds * substep_acceleration(s, i, g);
+    ++relax_steps_;
+    double energy = kinetic_energy(s, ctx.comm);
+    if (tau >= ramp && energy < previous) {
+      // Past a peak of the kinetic energy: kinetic damping (Cundall 1976), every velocity to
+      // zero. The viscous damping alone leaves the body's lowest mode underdamped (implicitly
+      // it saturates at about h^2 lap v a step, whatever eta), and a criterion on the kinetic
+      // energy alone would end the loop at a turning point, where all of the energy is strain
+      // energy; at a peak, the kinetic energy is the strain energy still to be released. The
+      // loop ends at a peak below the threshold.
+      relaxed = previous < relax_threshold_;
+      for (std::size_t i = 0; i < n; ++i)
+        if (kind[i] == Kind::kElastic && constraint_[i] < 0) vs[i] = Vec<D>::Zero();
+      energy = 0;
+    }
+    previous = energy;
+    substep_bound(s, ctx.comm, ctx.t);
+    if (!failure_.empty()) return;
+  }
+  if (!relaxed) ++unrelaxed_steps_;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kind[i] != Kind::kElastic) continue;
+    (*shown_a_)[i] = Vec<D>::Zero();
+    s.v[i] = vs[i];
+    s.a[i] = Vec<D>::Zero();
+  }
 }
 
 template <int D, class K>

@@ -169,8 +169,8 @@ void Simulation<D, K>::start() {
       const GuardScan<D> scan =
           scan_particles<D>(s_, fluids_, mats_, guards_, detail::to_vec<D>(c_.domain().lo()),
                             detail::to_vec<D>(c_.domain().hi()), grid_.periodic, 0, 0.0);
-      dt_ = c_.time().fixed_dt() > 0
-                ? c_.time().fixed_dt()
+      dt_ = fixed_time_step(c_) > 0
+                ? fixed_time_step(c_)
                 : std::min(bound_->dt(comm_.max(scan.max_speed), comm_.max(scan.max_acceleration)),
                            unit_set_.max_time_step());
       dt0_ = dt_;
@@ -300,7 +300,7 @@ typename Simulation<D, K>::StepReport Simulation<D, K>::step() {
   const EndOfStep e = end_of_step_checks();
   StepReport rep{e.violated, e.cancel, e.interrupt, e.checkpoint, e.out_of_time, e.diagnosis};
   if (e.violated) return rep;
-  if (c_.time().fixed_dt() <= 0) {
+  if (fixed_time_step(c_) <= 0) {
     // The units' bounds may change from step to step (the elastic solid's, thesis eq. 33).
     dt_ = std::min(bound_->dt(e.max_speed, e.max_acceleration), unit_set_.max_time_step());
     if (dt_ < guards_.min_dt_fraction * dt0_) {

@@ -179,7 +179,8 @@ void Simulation<D, K>::build_seam_units() {
   // Written by the fluid-solid coupling, read by the elastic unit (solver/elastic/).
   if (s_.has("elastic_fluid_force"))
     elastic_force_ = &s_.template get<Vec<D>>("elastic_fluid_force");
-  subcycled_elastic_ = c_.elastic_bodies_size() > 0 && c_.time().subcycle_elastic_bodies();
+  subcycled_elastic_ = c_.elastic_bodies_size() > 0 &&
+                       (c_.time().subcycle_elastic_bodies() || c_.time().has_quasi_static());
   if (s_.has("temperature")) temperature_ = &s_.template get<double>("temperature");
   if (s_.has("concentration")) concentration_ = &s_.template get<double>("concentration");
 }

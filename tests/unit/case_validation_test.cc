@@ -852,6 +852,49 @@ elastic_bodies { name: "vortex" material: "rubber"
   EXPECT_TRUE(errs.empty()) << dump(errs);
 }
 
+TEST(CaseValidation, QuasiStaticFieldsAndLimits) {
+  // Quasi-static loading (time.quasi_static): elastic bodies alone, each limit by name.
+  v1::Case c = parse_case_text(std::string(kNoFluid) + kRubber + kPlate);
+  auto* q = c.mutable_time()->mutable_quasi_static();
+  q->set_load_step(0.01);
+  q->set_damping(100);
+  q->set_kinetic_energy_threshold(1e-6);
+  auto errs = validate_case(c);
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  const CaseEstimate e = estimate_case(c);
+  EXPECT_EQ(e.dt_limited_by, "time.quasi_static.load_step");
+  EXPECT_EQ(e.steps, 100);
+  // At most load_step / (0.6 h / c_s) inner steps per load step, end_time / that in all.
+  const double cs = std::sqrt(1.4e6 / (3 * (1 - 2 * 0.4)) / 1000);
+  EXPECT_EQ(e.inner_steps, std::ceil(1.0 / (0.6 * 0.1 / cs)));
+  v1::Case bad = c;
+  bad.mutable_time()->mutable_quasi_static()->set_load_step(2);
+  bad.mutable_time()->mutable_quasi_static()->set_damping(0);
+  bad.mutable_time()->mutable_quasi_static()->set_kinetic_energy_threshold(-1);
+  bad.mutable_time()->set_fixed_dt(1e-3);
+  bad.mutable_time()->set_subcycle_elastic_bodies(true);
+  errs = validate_case(bad);
+  EXPECT_TRUE(has_error(errs, "time.quasi_static.load_step", "must be at most time.end_time (1)"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "time.quasi_static.damping", "must be > 0")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, "time.quasi_static.kinetic_energy_threshold", "must be > 0"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "time.fixed_dt", "must be unset with time.quasi_static"))
+      << dump(errs);
+  EXPECT_TRUE(
+      has_error(errs, "time.subcycle_elastic_bodies", "must be unset with time.quasi_static"))
+      << dump(errs);
+  // Not with fluid; not without an elastic body.
+  v1::Case wet = parse_case_text(std::string(kBase) + kRubber + kPlate);
+  *wet.mutable_time()->mutable_quasi_static() = *q;
+  EXPECT_TRUE(has_error(validate_case(wet), "time.quasi_static", "the case has fluid"));
+  v1::Case empty = parse_case_text(std::string(kBase));
+  empty.clear_fluids();
+  *empty.mutable_time()->mutable_quasi_static() = *q;
+  EXPECT_TRUE(
+      has_error(validate_case(empty), "time.quasi_static", "needs at least one elastic body"));
+}
+
 TEST(CaseValidation, ElasticMaterialConstants) {
   // On a FLUID material each elastic field is refused by name.
   auto errs = errors_of(R"(materials { name: "oil" density: 900 eos { sound_speed: 10 }

@@ -17,7 +17,12 @@ Loading: each end moves at V/2 (V = 1 m/s by default, about what the literature 
 loads at 0.05 mm/s with multi-time stepping, which the solver does not have), ramped over RAMP s,
 for 10 mm of total stretch. Kelvin-Voigt damping elastic_damping ETA (Pa s), hourglass control HG.
 
+With LOAD_STEPS > 0 the bar is loaded quasi-statically instead (time.quasi_static,
+docs/quasi_static.md): LOAD_STEPS load steps, the thesis' damping RELAX_ETA (3e4 Pa s) and
+kinetic energy threshold THRESHOLD (J/m; the thesis' 1e-3 E_e, E_e = F dx / 2 with F = 8000 N
+per mm and dx = 10 mm, is 40 J/m); V = 1e-4 m/s is the thesis' loading (t = 100 s).
 usage: make_necking_bar.py OUT.textproto [NY=20] [V=1.0] [ETA=3000] [HG=0.1] [STRETCH=0.010]
+                           [LOAD_STEPS=0] [THRESHOLD=40] [RELAX_ETA=3e4]
 """
 import math
 import sys
@@ -53,6 +58,9 @@ def main():
     eta = float(sys.argv[4]) if len(sys.argv) > 4 else 3000.0
     hg = float(sys.argv[5]) if len(sys.argv) > 5 else 0.1
     stretch = float(sys.argv[6]) if len(sys.argv) > 6 else 0.010
+    load_steps = int(sys.argv[7]) if len(sys.argv) > 7 else 0
+    threshold = float(sys.argv[8]) if len(sys.argv) > 8 else 40.0
+    relax_eta = float(sys.argv[9]) if len(sys.argv) > 9 else 3e4
     dp = PH / ny
     xs = columns(dp)
     pts = []
@@ -66,6 +74,10 @@ def main():
     ramp = min(2e-4, 0.1 * end)
     end += 0.5 * ramp  # the ramp's lost half
     grip = xs[-3] - 0.5 * dp  # the outer three columns
+    quasi_static = ""
+    if load_steps > 0:
+        quasi_static = (f"\n  quasi_static {{ load_step: {end / load_steps:.17g} damping: {relax_eta:g} "
+                        f"kinetic_energy_threshold: {threshold:g} }}\n")
     half = xs[-1] + dp
     with open(out, "w") as f:
         f.write(f"""# Written by tests/validation/plasticity/make_necking_bar.py {' '.join(sys.argv[2:])}
@@ -120,7 +132,7 @@ elastic_bodies {{
   observation_points {{ x: {-PL / 2:.6g} y: 0 }}
   observation_points {{ x: {PL / 2:.6g} y: 0 }}
 }}
-time {{ end_time: {end:.9g} }}
+time {{ end_time: {end:.9g}{quasi_static} }}
 output {{ interval: {end / 10:.6g} series_interval: {end / 400:.6g} }}
 """)
     print(f"{out}: {len(pts)} particles, dp {dp * 1e3:.5f} mm, {len(xs) * 2} columns, "
