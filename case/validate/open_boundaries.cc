@@ -136,6 +136,14 @@ void Validator::open_boundaries() {
       else if (!finite(o.pressure()))
         error(cat(f, "pressure"), "must be finite");
     }
+    if (o.has_backflow_stabilization()) {
+      if (velocity)
+        error(cat(f, "backflow_stabilization"),
+              "only used by a pressure outlet (an OUTFLOW without mean_velocity)");
+      else if (!(o.backflow_stabilization() >= 0 && o.backflow_stabilization() <= 1))
+        error(cat(f, "backflow_stabilization"),
+              "must be in [0, 1] (got " + num(o.backflow_stabilization()) + ")");
+    }
     if (o.has_temperature()) {
       if (!inflow) error(cat(f, "temperature"), "only used by an INFLOW");
       if (!c_.has_thermal())

@@ -237,7 +237,12 @@ class OpenBoundaries {
         const std::size_t lane = o.lane_of(s_.x[i]), l = lane_offset_[z - 1u] + lane;
         const double p_f = lane_pressure_[l] + o.rho0() * body.dot(s_.x[i] - o.sample_point(lane));
         const double rho_c = s_.rho[i] * fluids_[s_.material[i]].c;
-        s_.v[i] = (lane_value_[l] / s_.rho[i] + (p_f - o.outlet_pressure()) / rho_c) * o.normal();
+        // Backflow stabilisation (Braack & Mucha 2014): a lane flowing in aims at the static
+        // pressure of fluid entering from rest at the outlet's pressure.
+        const double u_n = lane_value_[l] / s_.rho[i], u_in = std::min(u_n, 0.0);
+        const double p_target =
+            o.outlet_pressure() - o.backflow_stabilization() * 0.5 * s_.rho[i] * u_in * u_in;
+        s_.v[i] = (u_n + (p_f - p_target) / rho_c) * o.normal();
       }
       if (o.inflow()) {
         if (temperature) (*temperature)[i] = o.temperature();

@@ -17,6 +17,7 @@ OpenBoundaryZone<D>::OpenBoundaryZone(const v1::Case& c, int index, std::uint16_
   inflow_ = ob.kind() == v1::INFLOW;
   prescribed_ = inflow_ || ob.has_mean_velocity();
   pressure_ = ob.has_pressure() ? ob.pressure() : 0.0;
+  backflow_ = ob.backflow_stabilization();
   temperature_ = ob.has_temperature() ? ob.temperature() : c.thermal().initial_temperature();
   concentration_ =
       ob.has_concentration() ? ob.concentration() : c.diffusion().initial_concentration();

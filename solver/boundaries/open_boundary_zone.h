@@ -35,6 +35,8 @@ class OpenBoundaryZone {
   std::uint16_t material() const { return material_; }
   double rho0() const { return rho0_; }
   double outlet_pressure() const { return pressure_; }
+  // Pressure outlets: beta of OpenBoundary.backflow_stabilization (0: off).
+  double backflow_stabilization() const { return backflow_; }
   double temperature() const { return temperature_; }
   double concentration() const { return concentration_; }
   int axis() const { return axis_; }
@@ -83,7 +85,7 @@ class OpenBoundaryZone {
   std::string name_;
   bool inflow_ = true, prescribed_ = true;
   std::uint16_t material_ = 0;
-  double rho0_ = 1, pressure_ = 0, temperature_ = 0, concentration_ = 0;
+  double rho0_ = 1, pressure_ = 0, backflow_ = 0, temperature_ = 0, concentration_ = 0;
   int axis_ = 0;
   double sign_ = 1;
   Vec<D> n_ = Vec<D>::Zero(), lo_ = Vec<D>::Zero(), hi_ = Vec<D>::Zero(), origin_ = Vec<D>::Zero();

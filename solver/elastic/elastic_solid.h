@@ -47,11 +47,12 @@
 // Quasi-static loading (TimeControl.quasi_static; thesis sec. 3.6, P-III sec. 4, digest sec.
 // 6.2; docs/quasi_static.md): the run's step is the outer (load) step; the bodies take the
 // sub-step path with no fluid force, and kAfterDrift relaxes them instead of sub-stepping:
-// constraints and gravity jump to the step's end (the load increment; constrained particles at
-// rest), then inner kick-drift-kick steps of eq. 33 with the relaxation damping
+// inner kick-drift-kick steps of eq. 33 in which the constraints and gravity first move on to
+// the step's end over a short ramp (the load increment), with the relaxation damping
 // (solver/elastic/relaxation_damping.h) after each drift and kinetic damping (every velocity
-// to zero at a peak of the kinetic energy), until such a peak is below the threshold, or the
-// inner steps fill the outer step (the thesis' loop: time advances either way). The series
+// to zero at a peak of the kinetic energy) after the ramp, until such a peak is below the
+// threshold, or the inner steps fill the outer step (the thesis' loop: time advances either
+// way). The series
 // "elastic/relaxation_steps" and "elastic/unrelaxed_load_steps" count the inner steps and the outer
 // steps that ended unrelaxed.
 //
@@ -134,8 +135,7 @@ class ElasticSolid final : public Unit<D> {
   // Sub-steps in one fluid step above which the run stops (a solid blowing up).
   static constexpr int kMaxSubsteps = 10000;
   // Quasi-static loading: the constraints' pace over a load step's ramp, as a fraction of the
-  // bodies' sound speed (the strain they impose as they go; a steel bar pulled at 3.5e-4 c_s
-  // follows the homogeneous plastic curve within 0.4%: docs/plasticity.md).
+  // bodies' sound speed, about the strain they impose as they go (docs/quasi_static.md).
   static constexpr double kLoadRampSpeed = 1e-4;
 
   explicit ElasticSolid(const UnitBuildContext<D>& b);
@@ -895,8 +895,8 @@ void ElasticSolid<D, K>::relax(StepContext<D>& ctx) {
   build_references(ctx);
   // The slow process of the outer step (thesis sec. 6.2): the constraints move to where they are
   // at its end, gravity to its value there. Not in one jump: a constrained particle that jumps
-  // by d strains its neighbours by about d / dx at once (1.6% at the grips of a steel bar
-  // stretched in 100 steps), which yields a plastic material there at every load step. The load
+  // by d strains its neighbours by about d / dx at once, which can yield a plastic material
+  // there at every load step (docs/quasi_static.md). The load
   // follows its path over the ramp time d_max / (kLoadRampSpeed c_s) of inner time instead (at
   // most the outer step), which strains the body by about kLoadRampSpeed as it goes.
   const double t0 = ctx.t - ctx.dt;
@@ -947,8 +947,9 @@ void ElasticSolid<D, K>::relax(StepContext<D>& ctx) {
       if (kind[i] == Kind::kElastic && constraint_[i] < 0)
         vs[i] += 0.5 * ds * substep_acceleration(s, i, g);
     ++relax_steps_;
+    const bool loaded = tau >= ramp;
     double energy = kinetic_energy(s, ctx.comm);
-    if (tau >= ramp && energy < previous) {
+    if (loaded && energy < previous) {
       // Past a peak of the kinetic energy: kinetic damping (Cundall 1976), every velocity to
       // zero. The viscous damping alone leaves the body's lowest mode underdamped (implicitly
       // it saturates at about h^2 lap v a step, whatever eta), and a criterion on the kinetic
@@ -960,6 +961,8 @@ void ElasticSolid<D, K>::relax(StepContext<D>& ctx) {
         if (kind[i] == Kind::kElastic && constraint_[i] < 0) vs[i] = Vec<D>::Zero();
       energy = 0;
     }
+    // The energy of the ramp's last step counts: the motion the ramp leaves is stopped as soon
+    // as the body slows down after it, not carried to a later peak.
     previous = energy;
     substep_bound(s, ctx.comm, ctx.t);
     if (!failure_.empty()) return;

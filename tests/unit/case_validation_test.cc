@@ -852,6 +852,19 @@ elastic_bodies { name: "vortex" material: "rubber"
   EXPECT_TRUE(errs.empty()) << dump(errs);
 }
 
+TEST(CaseValidation, BackflowStabilizationOnPressureOutletsOnly) {
+  const std::string outlet = R"(open_boundaries { name: "out" kind: OUTFLOW material: "water"
+  region { lo { x: 1.5 y: 0.5 } hi { x: 1.8 y: 1.5 } } direction { x: 1 } )";
+  EXPECT_TRUE(errors_of(outlet + "backflow_stabilization: 1 }").empty())
+      << dump(errors_of(outlet + "backflow_stabilization: 1 }"));
+  EXPECT_TRUE(has_error(errors_of(outlet + "backflow_stabilization: 1.5 }"),
+                        "open_boundaries[0].backflow_stabilization",
+                        "must be in [0, 1] (got 1.5)"));
+  EXPECT_TRUE(has_error(errors_of(outlet + "mean_velocity: 1 backflow_stabilization: 1 }"),
+                        "open_boundaries[0].backflow_stabilization",
+                        "only used by a pressure outlet"));
+}
+
 TEST(CaseValidation, QuasiStaticFieldsAndLimits) {
   // Quasi-static loading (time.quasi_static): elastic bodies alone, each limit by name.
   v1::Case c = parse_case_text(std::string(kNoFluid) + kRubber + kPlate);

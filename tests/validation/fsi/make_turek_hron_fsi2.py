@@ -79,7 +79,7 @@ open_boundaries {{
 open_boundaries {{
   name: "outlet" kind: OUTFLOW material: "fluid"
   region {{ lo {{ x: {L} y: 0 }} hi {{ x: {L + buf:.10g} y: {W} }} }}
-  direction {{ x: 1 }} pressure: 0
+  direction {{ x: 1 }} pressure: 0 backflow_stabilization: 1
 }}
 fluid_model {{ density: SUMMATION transport_velocity: true }}
 time {{ end_time: {t_end:.10g} }}
