@@ -46,7 +46,7 @@ BarSamples bar_samples(const std::string& out) {
 TEST(QuasiStatic, ElasticBarRelaxedAtEveryLoadStepHoldsTheStaticForce) {
   const double v = 1.6e-3, end_time = 0.098;
   const int load_steps = 100;
-  // Threshold: 1e-6 J/m, 7e-7 of F dx / 2 at the end (F about 1.7e7 N/m, dx = 0.17 mm).
+  // Threshold: 1e-6 J/m, 4e-10 of F dx / 2 at the end (F about 1.7e7 N/m, dx = 0.31 mm).
   v1::Case c = parse_case_text(test::plastic_bar_case(
       v, 1e-6, end_time, test::plastic_bar_quasi_static(end_time / load_steps, 1e-6)));
   c.mutable_materials(0)->clear_plasticity();
@@ -89,8 +89,9 @@ TEST(QuasiStatic, ElasticBarRelaxedAtEveryLoadStepHoldsTheStaticForce) {
       slow_plain / inner);
   ASSERT_GT(samples, 50u);
   // Measured: 4.3-5.6% below E' W (the grips hold the bar's width, which stiffens its ends and
-  // bends the strain field into the gauge; 10 particles across), within 1.5% of the plain
-  // steps, whose own samples scatter by 0.8%.
+  // bends the strain field into the gauge; 10 particles across), within 2.1% of the plain
+  // steps sample by sample (their own samples scatter by 0.8%, the ramp's waves), 1% at the
+  // first samples, where the relaxation left most.
   EXPECT_LT(worst, 0.07);
   EXPECT_LT(worst_plain, 0.025);
   EXPECT_NEAR(outer, load_steps, 1);
@@ -104,7 +105,7 @@ TEST(QuasiStatic, ElasticBarRelaxedAtEveryLoadStepHoldsTheStaticForce) {
 TEST(QuasiStatic, PlasticBarFollowsTheHomogeneousCurveInFewInnerSteps) {
   const double v = 1.6e-3, end_time = 0.98;
   const int load_steps = 100;
-  // Threshold: 1e-6 of F dx / 2 at the end (F about 7e6 N/m, dx = 3.1 mm).
+  // Threshold: 1e-5 J/m, 1e-9 of F dx / 2 at the end (F about 7e6 N/m, dx = 3.1 mm).
   const v1::Case c = parse_case_text(test::plastic_bar_case(
       v, 1e-6, end_time, test::plastic_bar_quasi_static(end_time / load_steps, 1e-5)));
   const std::string out = test::output_dir("quasi_static_plastic_bar");
@@ -122,7 +123,8 @@ TEST(QuasiStatic, PlasticBarFollowsTheHomogeneousCurveInFewInnerSteps) {
       outer, inner, inner / outer, unrelaxed, plain, plain / inner);
   ASSERT_GT(cmp.samples, 50u);
   EXPECT_GT(cmp.last_lambda, 1.08);
-  // Measured: see docs/quasi_static.md.
+  // Measured: 0.66% plastic, alpha at the centre 0.0946 against 0.0955, 27594 inner steps
+  // (docs/quasi_static.md).
   EXPECT_LT(cmp.worst_plastic, 0.01);
   EXPECT_LT(cmp.worst_balance, 0.005);
   EXPECT_NEAR(cmp.alpha_centre, cmp.alpha_homogeneous, 0.03 * cmp.alpha_homogeneous);
