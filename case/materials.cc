@@ -31,6 +31,12 @@ std::vector<MaterialParams> resolve_materials(const v1::Case& c) {
     p.poisson_ratio = m.poisson_ratio();
     p.elastic_law = static_cast<int>(m.elastic_law());
     p.elastic_damping = m.elastic_damping();
+    p.diffusivity = m.diffusivity();
+    if (m.has_porous()) {
+      p.porous = true;
+      p.swelling_modulus = m.porous().swelling_modulus();
+      p.reference_saturation = m.porous().reference_saturation();
+    }
     if (m.has_plasticity()) {
       const v1::J2Plasticity& pl = m.plasticity();
       p.plastic = true;

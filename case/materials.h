@@ -33,6 +33,12 @@ struct MaterialParams {
   double saturation_stress = 0;    // sigma_inf [Pa] (yield_stress where the case gives 0)
   double saturation_exponent = 0;  // delta
   double linear_hardening = 0;     // H [Pa]
+  // Porous solid (Material.porous; P-III eq. 2.21): the saturation diffuses through it
+  // (solver/elastic/porous_diffusion.h) and presses with p = C (c - c0).
+  bool porous = false;
+  double swelling_modulus = 0;      // C [Pa]
+  double diffusivity = 0;           // rho D [kg/(m s)] (Material.diffusivity)
+  double reference_saturation = 0;  // c0
   // Lame parameters from E and nu (thesis eq. 2.6) and the bulk modulus K = E / (3 (1 - 2 nu)).
   double lame_lambda() const {
     return youngs_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));

@@ -129,6 +129,7 @@ void Validator::elastic_body(const v1::ElasticBody& b, const std::string& f) {
     error(cat(f, "initial_temperature"),
           "set, but heat conduction is not enabled (add a `thermal { }` block)");
   transport_properties(b.material(), f + ".material");
+  concentration_holds(b, f, shape_ok);
 
   // Observation points: inside the domain, where the body's particles can be.
   if (c_.has_domain()) {

@@ -75,6 +75,7 @@ void Validator::elastic_constants(const v1::Material& m, const std::string& f) {
     if (m.elastic_damping() != 0) error(cat(f, "elastic_damping"), why);
     if (m.has_hourglass_control()) error(cat(f, "hourglass_control"), why);
     if (m.has_plasticity()) error(cat(f, "plasticity"), why);
+    if (m.has_porous()) error(cat(f, "porous"), why);
     return;
   }
   if (m.has_youngs_modulus())
@@ -94,6 +95,7 @@ void Validator::elastic_constants(const v1::Material& m, const std::string& f) {
                                            num(m.hourglass_control()) +
                                            "); 0 turns the hourglass control off");
   if (m.has_plasticity()) plasticity(m, f);
+  if (m.has_porous()) porous(m, f);
   if (!v1::ElasticLaw_IsValid(m.elastic_law()))
     error(cat(f, "elastic_law"), "unknown value " + std::to_string(m.elastic_law()) +
                                      " (SAINT_VENANT_KIRCHHOFF or NEO_HOOKEAN)");

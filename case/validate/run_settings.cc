@@ -46,6 +46,7 @@ void Validator::run_settings() {
     if (t.subcycle_elastic_bodies())
       error("time.subcycle_elastic_bodies",
             "must be unset with time.quasi_static (the inner steps take its place)");
+    quasi_static_diffusion();
   }
   const auto& o = c_.output();
   non_negative(o.interval(), "output.interval");

@@ -94,6 +94,11 @@ class Validator {
   int material_position(const std::string& name) const;
   void elastic_constants(const v1::Material& m, const std::string& f);
   void plasticity(const v1::Material& m, const std::string& f);
+  void porous(const v1::Material& m, const std::string& f);  // porous.cc
+  // porous.cc, from elastic_body: initial_concentration and concentration_holds.
+  void concentration_holds(const v1::ElasticBody& b, const std::string& f, bool shape_ok);
+  // porous.cc, from run_settings: the load step against the explicit diffusion bounds.
+  void quasi_static_diffusion();
   void transport_properties(const std::string& name, const std::string& field);
 
   // anisotropy.cc, from elastic_body: ElasticBody.anisotropy; shape_ok: the body's shape passed

@@ -97,6 +97,12 @@
 // longest semi-axis (case/anisotropy.h). The time step stays eq. 33 with the run's h, which is
 // the smoothing length through the thickness, the smallest: the thickness direction bounds it.
 //
+// Porous bodies (Material.porous; thesis sec. 2.3, P-III eqs. 2.17 and 2.21, digest sec. 5.2;
+// docs/porous_media.md): the pore fluid of saturation c (the case's concentration column,
+// solver/physics/scalar_transport.h) presses with p = C (c - c0), and the mixture's Cauchy stress
+// sigma_s - p I enters the momentum sum as P = P_s - J p F^-T (the P-II eq. 7 form). The
+// saturation is the particle's own, read where P is, so it needs no ghost.
+//
 // Guard: a particle whose correction matrix is singular (it lost the reference neighbours that
 // span the space: a torn body) or whose F is inverted (det F <= 0) stops the run, naming the
 // body, the particle and the place.
@@ -209,6 +215,9 @@ class ElasticSolid final : public Unit<D> {
   std::vector<J2Constants> j2_;         // per material, plastic_[k] != 0 only
   std::vector<char> plastic_;           // per material: J2 plasticity on
   std::vector<double> inv_rho0_;        // per material
+  // Porous materials only: C and c0 per material (C = 0: none), and the saturation column.
+  std::vector<double> swelling_modulus_, reference_saturation_;
+  const Column<double>* saturation_ = nullptr;
   std::vector<Body> bodies_;
   std::vector<MotionPath> paths_;  // per constraint, bodies in order
   std::vector<MotionPath::Pose> poses_;
@@ -226,7 +235,9 @@ class ElasticSolid final : public Unit<D> {
   bool observed_found_ = false;
   std::vector<std::pair<ParticleId, std::size_t>> slots_;  // observed id -> series slot
   std::string failure_;
-  std::vector<double> maxima_ = std::vector<double>(2);  // |a|max, |v|max (reduced in place)
+  // |a|max, |v|max, and in substep_bound |E|max of Saint Venant-Kirchhoff particles (reduced in
+  // place).
+  std::vector<double> maxima_ = std::vector<double>(3);
 
   ReferenceNeighbors<D> refs_;
   // Anisotropic bodies only (null / empty otherwise): each particle's kernel map G (persistent,
@@ -310,8 +321,16 @@ ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
     displacement_[a] = &b.particles.template add<double>(kAxis[a], kName, true);
     displacement_[a]->set_ghost(false);
   }
-  for (std::size_t k = 0; k < b.materials.size(); ++k)
+  for (std::size_t k = 0; k < b.materials.size(); ++k) {
     if (b.materials[k].rho0 > 0) inv_rho0_[k] = 1.0 / b.materials[k].rho0;
+    swelling_modulus_.push_back(b.materials[k].swelling_modulus);
+    reference_saturation_.push_back(b.materials[k].reference_saturation);
+  }
+  // The diffusion unit, built before this one, owns the column (validation requires it).
+  if (std::any_of(swelling_modulus_.begin(), swelling_modulus_.end(),
+                  [](double C) { return C != 0.0; }) &&
+      b.particles.has("concentration"))
+    saturation_ = &b.particles.template get<double>("concentration");
   const v1::Case& c = b.c;
   if (c.time().has_quasi_static()) {
     relax_damping_ = c.time().quasi_static().damping();
@@ -491,6 +510,7 @@ void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
   // Thesis eq. 33 with the maxima of all ranks (exact, so the same on any rank count).
   maxima_[0] = a_max;
   maxima_[1] = v_max;
+  maxima_[2] = 0;
   ctx.comm.max_inplace(maxima_);
   max_dt_ = h_ / (maxima_[1] + sound_speed_);
   if (maxima_[0] > 0) max_dt_ = std::min(max_dt_, std::sqrt(h_ / maxima_[0]));
@@ -545,13 +565,21 @@ void ElasticSolid<D, K>::stresses(StepContext<D>& ctx, const Vec<D>* v) {
         fail(s, i, ctx, buf);
       } else {
         F = Fi;
+        Mat<D> P;
         if (metric_ && plastic_[mat[i]]) {
-          pb_[i] = plastic_stress(law, mat[i], i, F, sums.velocity * B) * Bg;
+          P = plastic_stress(law, mat[i], i, F, sums.velocity * B);
         } else {
           const Mat<D> S = second_piola<D>(law, F, sums.velocity * B);
-          pb_[i] = F * S * Bg;  // P B with P = F S (eq. 2.3)
+          P = F * S;  // eq. 2.3
           von_mises_[i] = von_mises(cauchy_stress<D>(law, F, S));
         }
+        // The pore pressure (P-III eqs. 2.17, 2.21): isotropic, so no von Mises part.
+        if (saturation_ && swelling_modulus_[mat[i]] != 0.0) {
+          const double p =
+              swelling_modulus_[mat[i]] * ((*saturation_)[i] - reference_saturation_[mat[i]]);
+          P -= (p * J) * F.inverse().transpose();
+        }
+        pb_[i] = P * Bg;
         strain_[i] = equivalent_strain<D>(F);
       }
     }
@@ -949,7 +977,8 @@ void ElasticSolid<D, K>::relax(StepContext<D>& ctx) {
     ++relax_steps_;
     const bool loaded = tau >= ramp;
     double energy = kinetic_energy(s, ctx.comm);
-    if (loaded && energy < previous) {
+    // (<=: a body the load step leaves at rest has zero kinetic energy twice, a peak at zero.)
+    if (loaded && energy <= previous) {
       // Past a peak of the kinetic energy: kinetic damping (Cundall 1976), every velocity to
       // zero. The viscous damping alone leaves the body's lowest mode underdamped (implicitly
       // it saturates at about h^2 lap v a step, whatever eta), and a criterion on the kinetic
@@ -979,18 +1008,26 @@ void ElasticSolid<D, K>::relax(StepContext<D>& ctx) {
 template <int D, class K>
 void ElasticSolid<D, K>::substep_bound(const ParticleStore<D>& s, const Comm& comm, double t) {
   const Vec<D> g = BodyForce<D>::damping_factor(t, gravity_ramp_) * gravity_;
-  double a_max = 0, v_max = 0;
+  double a_max = 0, v_max = 0, strain_max = 0;
   for (std::size_t i = 0; i < s.owned(); ++i) {
     if (s.kind[i] != Kind::kElastic) continue;
     v_max = std::max(v_max, (*solid_v_)[i].norm());
     if (constraint_[i] < 0)
       a_max = std::max(a_max, (substep_acceleration(s, i, g) + (*held_force_)[i] / s.m[i]).norm());
+    if (laws_[s.material[i]].law == ElasticLawKind::kSaintVenantKirchhoff)
+      strain_max =
+          std::max(strain_max, 0.5 * (F_[i].transpose() * F_[i] - Mat<D>::Identity()).norm());
   }
-  // Thesis eq. 33, as max_dt_ in forces().
+  // Thesis eq. 33, as max_dt_ in forces(), with the sound speed of the stretched material: the
+  // tangent of Saint Venant-Kirchhoff, dP/dF = S + F (lambda tr dE + 2 mu dE), grows by about
+  // 1 + 3 |E| (|E| >= its largest principal strain). With the sound speed at rest, a block
+  // swollen by 8% (|E| = 0.12) never relaxed at cfl_factor above 0.9: its corners kept
+  // oscillating (docs/porous_media.md).
   maxima_[0] = a_max;
   maxima_[1] = v_max;
+  maxima_[2] = strain_max;
   comm.max_inplace(maxima_);
-  double dt = h_ / (maxima_[1] + sound_speed_);
+  double dt = h_ / (maxima_[1] + sound_speed_ * std::sqrt(1 + 3 * maxima_[2]));
   if (maxima_[0] > 0) dt = std::min(dt, std::sqrt(h_ / maxima_[0]));
   substep_dt_ = std::min(cfl_ * kTimeStepFactor * dt, cfl_ * damping_dt_);
 }

@@ -6,6 +6,12 @@
 //   kWallState   the explicit update of eq. 37: rates from T^n at r^{n+1} and rho^{n+1},
 //                after the wall condition, with Dirichlet walls' mirror values refreshed
 //                on the ghosts first.
+// Under quasi-static loading (TimeControl.quasi_static) the update runs at kAfterDrift instead,
+// before the elastic bodies relax in the same phase: the thesis' outer loop applies the slow
+// process first, then relaxes the solid to it (digest sec. 6.2), so a porous body's shape at
+// t^{n+1} is the equilibrium of its saturation at t^{n+1}. The bodies have not moved since the
+// last search (their inner steps ran in the previous kAfterDrift), so the rates are those of
+// T^n at r^n from that search's lists.
 // The value column is persistent, so checkpoints carry it; snapshots write it, and the series
 // diagnostics/<name>_min, _max and the content (thermal energy sum m h(T), latent heat
 // included; species mass sum m C) follow it. A non-finite value stops the run: an explicit
@@ -39,6 +45,7 @@ class ScalarTransport final : public Unit<D> {
         c_(c),
         materials_(materials),
         wall_index_(wall_index ? wall_index : &no_walls_),
+        before_relaxation_(c.time().has_quasi_static()),
         diffusion_(s, column_name(), diffusion_materials(h, cfl_factor), wall_values(),
                    wall_materials(), wall_volume,
                    field == Field::kTemperature ? c.thermal().volumetric_heat_source() : 0.0,
@@ -55,6 +62,8 @@ class ScalarTransport final : public Unit<D> {
   void run(StepPhase phase, StepContext<D>& ctx) override {
     if (phase == StepPhase::kAfterDrift) {
       if (wall_index_ != &no_walls_) diffusion_.set_wall_values(ctx.t, *wall_index_);
+      if (!before_relaxation_) return;
+    } else if (before_relaxation_) {
       return;
     }
     if (ctx.dt <= 0) return;  // priming: no update
@@ -121,6 +130,9 @@ class ScalarTransport final : public Unit<D> {
       dm.capacity = heat && pm.has_heat_capacity() ? pm.heat_capacity() : 1.0;
       dm.density = pm.density();
       if (!heat) dm.fixed = pm.fixed_concentration();
+      // Porous elastic bodies diffuse their saturation themselves
+      // (solver/elastic/porous_diffusion.h); here they exchange nothing.
+      if (!heat && pm.has_porous()) dm.coefficient = 0;
       // Both materials of a transition with latent heat take it up over the same interval
       // (Fuchs 2021 Remark 3), so a particle's enthalpy does not jump when it changes phase.
       if (heat)
@@ -187,6 +199,7 @@ class ScalarTransport final : public Unit<D> {
       case Kind::kElastic: {  // conducts like a rigid body (thesis sec. 5.1)
         const auto& b = c_.elastic_bodies(p.elastic);
         if (heat && b.has_initial_temperature()) return b.initial_temperature();
+        if (!heat && b.has_initial_concentration()) return b.initial_concentration();
         return fallback;
       }
       case Kind::kWall: {
@@ -205,6 +218,7 @@ class ScalarTransport final : public Unit<D> {
   const std::vector<MaterialParams>& materials_;
   Column<std::uint16_t> no_walls_{"wall_index", "walls", false};
   const Column<std::uint16_t>* wall_index_;
+  bool before_relaxation_;  // quasi-static loading: update at kAfterDrift
   double max_dt_ = std::numeric_limits<double>::infinity();
   ScalarDiffusion<D> diffusion_;  // last: built from the helpers above, which set max_dt_
 };

@@ -6,7 +6,9 @@
 #include <mpi.h>
 
 #include "solver/core/kernel.h"
+#include "solver/elastic/concentration_hold.h"
 #include "solver/elastic/elastic_solid.h"
+#include "solver/elastic/porous_diffusion.h"
 #include "solver/physics/density_diffusion.h"
 #include "solver/physics/particle_shifting.h"
 #include "solver/physics/riemann_dissipation.h"
@@ -82,17 +84,38 @@ std::vector<std::unique_ptr<Unit<D>>> make_units(const UnitBuildContext<D>& b) {
     units.push_back(std::make_unique<ScalarTransport<D>>(Scalar::kTemperature, b.c, b.materials,
                                                          b.particles, b.h, b.wall_volume,
                                                          b.cfl_factor, b.wall_index));
-  if (b.c.has_diffusion())
-    units.push_back(std::make_unique<ScalarTransport<D>>(Scalar::kConcentration, b.c, b.materials,
-                                                         b.particles, b.h, b.wall_volume,
-                                                         b.cfl_factor, b.wall_index));
-  // Its sums evaluate the kernel at reference distances, so it is built for the case's kernel.
-  if (b.c.elastic_bodies_size() > 0) {
-    if (b.c.kernel() == v1::WENDLAND_C2)
-      units.push_back(std::make_unique<ElasticSolid<D, WendlandC2<D>>>(b));
-    else
-      units.push_back(std::make_unique<ElasticSolid<D, QuinticSpline<D>>>(b));
+  Column<double>* concentration = nullptr;
+  if (b.c.has_diffusion()) {
+    auto diffusion =
+        std::make_unique<ScalarTransport<D>>(Scalar::kConcentration, b.c, b.materials, b.particles,
+                                             b.h, b.wall_volume, b.cfl_factor, b.wall_index);
+    concentration = &diffusion->values();
+    units.push_back(std::move(diffusion));
   }
+  // The elastic solid, built for the case's kernel (its sums evaluate it at reference
+  // distances): after the concentration, whose column its pore pressure reads, and before the
+  // porous diffusion, which reads its reference columns, but run after that and the holds, which
+  // change the concentration it reads.
+  std::unique_ptr<Unit<D>> elastic;
+  if (b.c.elastic_bodies_size() > 0) {
+    const bool wendland = b.c.kernel() == v1::WENDLAND_C2;
+    if (wendland)
+      elastic = std::make_unique<ElasticSolid<D, WendlandC2<D>>>(b);
+    else
+      elastic = std::make_unique<ElasticSolid<D, QuinticSpline<D>>>(b);
+    if (concentration && PorousDiffusion<D, WendlandC2<D>>::wanted(b.materials)) {
+      if (wendland)
+        units.push_back(std::make_unique<PorousDiffusion<D, WendlandC2<D>>>(
+            b.c, b.materials, b.particles, b.h, b.cfl_factor, *concentration));
+      else
+        units.push_back(std::make_unique<PorousDiffusion<D, QuinticSpline<D>>>(
+            b.c, b.materials, b.particles, b.h, b.cfl_factor, *concentration));
+    }
+  }
+  // After the diffusion in each phase, before the elastic bodies read the concentration.
+  if (concentration && ConcentrationHolds<D>::wanted(b.c))
+    units.push_back(std::make_unique<ConcentrationHolds<D>>(b.c, b.particles, *concentration));
+  if (elastic) units.push_back(std::move(elastic));
   if (b.c.has_surface_tension())
     units.push_back(std::make_unique<SurfaceTension<D>>(b.c, b.materials, b.particles, b.h,
                                                         b.wall_volume, b.cfl_factor, b.wall_index));

@@ -1063,6 +1063,53 @@ TEST(RankConsistency, QuasiStaticBarAcrossRanksAndResume) {
   }
 }
 
+// A porous elastic body (Material.porous, ElasticBody.concentration_holds; docs/porous_media.md)
+// under quasi-static loading: the diffusion runs before the relaxation in the same phase, from the
+// lists of the last search, and the held particles are found by their reference position, so the
+// saturation and the pore pressure it gives are the same on any rank count and across a resume.
+// The thesis' porous beam of cases/porous_beam_2d.textproto shortened to 1.25 mm (40 columns),
+// 6 load steps of 0.5 s (the droplet on for the first 1 s), on 1/2/4 ranks and resumed from
+// load step 3.
+TEST(RankConsistency, PorousBeamAcrossRanksAndResume) {
+  v1::Case c = test::load_case("porous_beam_2d");
+  const double dp = c.dx(), L = 40 * dp;
+  auto* beam = c.mutable_elastic_bodies(0);
+  beam->mutable_shape()->mutable_box()->mutable_hi()->set_x(L + 3 * dp);
+  beam->mutable_constraints(1)->mutable_region()->mutable_box()->mutable_lo()->set_x(L);
+  auto* hold = beam->mutable_concentration_holds(0);
+  hold->mutable_region()->mutable_box()->mutable_lo()->set_x(0.35 * L);
+  hold->mutable_region()->mutable_box()->mutable_hi()->set_x(0.65 * L);
+  hold->set_end_time(1.0);
+  for (auto& p : *beam->mutable_observation_points()) p.set_x(19.5 * dp);
+  c.mutable_time()->set_end_time(3.0);
+  c.mutable_output()->set_series_interval(1e-12);  // every step: rows after the checkpoint
+  check_rank_counts("porous_beam", c, 6, false);
+  check_resume("porous_beam", c, 6, 3);
+  if (world_rank() != 0) return;
+  const std::string base = std::string(SPHD_BINARY_DIR) + "/test-output/mpi_porous_beam_";
+  test::ResultReader rr(base + "resume_reference/result.h5");
+  const auto deflection = rr.series("elastic/beam/displacement");  // 2 points x 2 per row
+  const double inner = rr.series("elastic/relaxation_steps").back();
+  std::printf("porous beam: centre deflection %.3g m after 6 load steps, %.0f inner steps\n",
+              deflection[deflection.size() - 3], inner);
+  EXPECT_GT(std::abs(deflection[deflection.size() - 3]), 1e-7);  // it bends
+  for (const char* run : {"1/result.h5", "2/result.h5", "4/result.h5", "resume_resumed_1/result.h5",
+                          "resume_resumed_4/result.h5"}) {
+    test::ResultReader rs(base + run);
+    EXPECT_EQ(rs.series("elastic/relaxation_steps").back(), inner) << run;
+    EXPECT_EQ(rs.series("elastic/beam/displacement"), deflection) << run;
+    // A plain MPI sum (solver/physics/scalar_transport.h), not an exact one: equal to round-off.
+    const auto mass = rs.series("diagnostics/species_mass");
+    const auto mass_ref = rr.series("diagnostics/species_mass");
+    ASSERT_EQ(mass.size(), mass_ref.size()) << run;
+    for (std::size_t k = 0; k < mass.size(); ++k)
+      EXPECT_NEAR(mass[k], mass_ref[k], 1e-12 * mass_ref[k]) << run;
+  }
+  // After the droplet leaves (t = 1 s) the beam keeps its water: its free surfaces are closed.
+  const auto mass = rr.series("diagnostics/species_mass");
+  EXPECT_NEAR(mass.back(), mass[2], 1e-12 * mass[2]);
+}
+
 // The single-precision pair kernel across a resume: the values are rounded from each pair's
 // distance whenever the lists are refined (the checkpoint carries where the particles were
 // searched, not the values), so the resumed runs must round exactly as the uninterrupted one.

@@ -908,6 +908,85 @@ TEST(CaseValidation, QuasiStaticFieldsAndLimits) {
       has_error(validate_case(empty), "time.quasi_static", "needs at least one elastic body"));
 }
 
+TEST(CaseValidation, PorousSolidFieldsAndLimits) {
+  // A porous plate (Material.porous) wetted on its right end, relaxed quasi-statically.
+  const std::string material = R"(materials { name: "gel" phase: SOLID density: 1000
+  youngs_modulus: 1.4e6 poisson_ratio: 0.4 diffusivity: 1e-4
+  porous { swelling_modulus: 1e5 reference_saturation: 0.1 } }
+)";
+  const auto plate = [](const std::string& extra) {
+    return R"(elastic_bodies { name: "plate" material: "gel"
+  shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } }
+  constraints { region { box { lo { x: 0.2 y: 1.6 } hi { x: 0.4 y: 1.8 } } } } )" +
+           extra + "}\n";
+  };
+  const std::string wet =
+      "concentration_holds { region { box { lo { x: 1 y: 1.6 } hi { x: 1.2 y: 1.8 } } } value: 0.5 "
+      "end_time: 0.5 } initial_concentration: 0.1";
+  const std::string base = std::string(kNoFluid) + material + "diffusion { }\n";
+  v1::Case c = parse_case_text(base + plate(wet));
+  auto* q = c.mutable_time()->mutable_quasi_static();
+  q->set_load_step(0.1);
+  q->set_damping(100);
+  q->set_kinetic_energy_threshold(1e-6);
+  auto errs = validate_case(c);
+  EXPECT_TRUE(errs.empty()) << dump(errs);
+  // The load step against the explicit diffusion bound 0.1 rho h^2 / D (h = dx = 0.1).
+  v1::Case slow = c;
+  slow.mutable_materials(0)->set_diffusivity(100);
+  errs = validate_case(slow);
+  EXPECT_TRUE(has_error(errs, "time.quasi_static.load_step",
+                        "must be at most 0.01 s: the explicit diffusion step of material 'gel'"))
+      << dump(errs);
+  // Each field by name.
+  v1::Case bad = c;
+  bad.mutable_materials(0)->mutable_porous()->set_swelling_modulus(-1);
+  bad.mutable_materials(0)->mutable_porous()->set_reference_saturation(1.5);
+  auto* h = bad.mutable_elastic_bodies(0)->mutable_concentration_holds(0);
+  h->set_start_time(-1);
+  h->mutable_region()->mutable_box()->mutable_lo()->set_x(1.5);
+  h->mutable_region()->mutable_box()->mutable_hi()->set_x(1.7);
+  errs = validate_case(bad);
+  EXPECT_TRUE(has_error(errs, "materials[0].porous.swelling_modulus", "must be >= 0 (got -1)"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "materials[0].porous.reference_saturation", "must be in [0, 1]"))
+      << dump(errs);
+  const std::string hf = "elastic_bodies[0].concentration_holds[0].";
+  EXPECT_TRUE(has_error(errs, hf + "start_time", "must be >= 0 [s] (got -1)")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, hf + "region", "does not overlap the body's shape")) << dump(errs);
+  v1::Case thin = c;
+  thin.mutable_elastic_bodies(0)->mutable_anisotropy()->set_ratio(2);
+  EXPECT_TRUE(has_error(validate_case(thin), "elastic_bodies[0].anisotropy",
+                        "must be resolved isotropically"));
+  // Non-finite numbers are refused with every other number of the case.
+  v1::Case nan = c;
+  nan.mutable_elastic_bodies(0)->mutable_concentration_holds(0)->set_value(std::nan(""));
+  EXPECT_TRUE(has_error(validate_case(nan), hf + "value", "every number must be finite"));
+  v1::Case late = c;
+  late.mutable_elastic_bodies(0)->mutable_concentration_holds(0)->set_start_time(0.6);
+  EXPECT_TRUE(has_error(validate_case(late), hf + "end_time", "must be > start_time (0.6 s)"));
+  // Without the diffusion block; on a fluid; on a material no elastic body uses.
+  v1::Case dry = c;
+  dry.clear_diffusion();
+  errs = validate_case(dry);
+  EXPECT_TRUE(has_error(errs, "materials[0].porous", "needs concentration diffusion"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].concentration_holds",
+                        "concentration diffusion is not enabled"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, "elastic_bodies[0].initial_concentration",
+                        "concentration diffusion is not enabled"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errors_of(R"(materials { name: "oil" density: 900 eos { sound_speed: 10 }
+  porous { swelling_modulus: 1 } })"),
+                        "materials[1].porous", "set on a FLUID material"));
+  v1::Case unused = parse_case_text(base + R"(materials { name: "stone" phase: SOLID density: 2000
+  youngs_modulus: 1e9 poisson_ratio: 0.2 diffusivity: 0 porous { swelling_modulus: 1 } }
+)" + plate(""));
+  EXPECT_TRUE(has_error(validate_case(unused), "materials[1].porous", "which no elastic body uses"))
+      << dump(validate_case(unused));
+}
+
 TEST(CaseValidation, ElasticMaterialConstants) {
   // On a FLUID material each elastic field is refused by name.
   auto errs = errors_of(R"(materials { name: "oil" density: 900 eos { sound_speed: 10 }
