@@ -5,6 +5,7 @@
 #include "case/validate/validator.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -130,6 +131,7 @@ void Validator::elastic_body(const v1::ElasticBody& b, const std::string& f) {
           "set, but heat conduction is not enabled (add a `thermal { }` block)");
   transport_properties(b.material(), f + ".material");
   concentration_holds(b, f, shape_ok);
+  if (b.body_force_field().has_manufactured_torsion()) manufactured_torsion(b, f);
 
   // Observation points: inside the domain, where the body's particles can be.
   if (c_.has_domain()) {
@@ -143,6 +145,26 @@ void Validator::elastic_body(const v1::ElasticBody& b, const std::string& f) {
         error(g, "lies outside the domain" + domain_text());
     }
   }
+}
+
+// The manufactured torsion's force (solver/elastic/manufactured_torsion.h) is the equilibrium
+// of a neo-Hookean ring in plane strain.
+void Validator::manufactured_torsion(const v1::ElasticBody& b, const std::string& f) {
+  const v1::ManufacturedTorsion& t = b.body_force_field().manufactured_torsion();
+  const std::string g = cat(f, "body_force_field.manufactured_torsion");
+  if (c_.dimension() != 2) error(g, "is a 2D field (a ring in the plane); the case is 3D");
+  if (const int k = material_position(b.material());
+      k >= 0 && c_.materials(k).elastic_law() != v1::NEO_HOOKEAN)
+    error(g, "holds a neo-Hookean ring in shape: material '" + b.material() +
+                 "' must have elastic_law NEO_HOOKEAN");
+  point(t.center(), cat(g, "center"));
+  positive(t.inner_radius(), cat(g, "inner_radius"), "must be > 0 [m]");
+  if (!(t.outer_radius() > t.inner_radius()))
+    error(cat(g, "outer_radius"),
+          "must be > inner_radius (" + num(t.inner_radius()) + "); got " + num(t.outer_radius()));
+  if (!(t.angle() > 0 && t.angle() <= std::acos(-1.0) / 2))
+    error(cat(g, "angle"), "must be in (0, pi/2] [rad]; got " + num(t.angle()));
+  positive(t.ramp_time(), cat(g, "ramp_time"), "must be > 0 [s]");
 }
 
 // A ghost image across a periodic seam carries the reference position of the other side, so

@@ -99,6 +99,8 @@ class Validator {
   void concentration_holds(const v1::ElasticBody& b, const std::string& f, bool shape_ok);
   // porous.cc, from run_settings: the load step against the explicit diffusion bounds.
   void quasi_static_diffusion();
+  // elastic_bodies.cc: ElasticBody.body_force_field.manufactured_torsion.
+  void manufactured_torsion(const v1::ElasticBody& b, const std::string& f);
   void transport_properties(const std::string& name, const std::string& field);
 
   // anisotropy.cc, from elastic_body: ElasticBody.anisotropy; shape_ok: the body's shape passed

@@ -16,7 +16,8 @@
 //                coupling terms of eqs. 3.12-3.13 as they are, but they are forces: divided by
 //                m_a here, erratum 3 of the digest), and g gravity (ramped as the fluid's,
 //                Adami 2012 eq. 13) unless the body ignores it. The fluid's constant body force
-//                does not act on solids.
+//                does not act on solids; a body's own force field (ElasticBody.body_force_field,
+//                solver/elastic/manufactured_torsion.h) does, at every step and sub-step.
 //   kConstraints particles of a constraint get a = 0: clamped ones stay where they were put at
 //                rest, prescribed ones move as kAfterDrift sets them.
 //   kAfterDrift  particles of a constraint with a motion are put at x(t), v(t) of the motion
@@ -110,6 +111,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -120,6 +122,7 @@
 #include "solver/elastic/elastic_law.h"
 #include "solver/elastic/hourglass_control.h"
 #include "solver/elastic/j2_plasticity.h"
+#include "solver/elastic/manufactured_torsion.h"
 #include "solver/elastic/relaxation_damping.h"
 #include "solver/elastic/total_lagrangian.h"
 #include "solver/parallel/exact_sum.h"
@@ -175,9 +178,10 @@ class ElasticSolid final : public Unit<D> {
   struct Body {
     std::string name;
     bool gravity = true;
-    std::size_t first_constraint = 0;  // into paths_
-    std::vector<Vec<D>> points;        // observation points
-    std::vector<ParticleId> observed;  // the particle nearest each point
+    std::size_t first_constraint = 0;               // into paths_
+    std::vector<Vec<D>> points;                     // observation points
+    std::vector<ParticleId> observed;               // the particle nearest each point
+    std::optional<ManufacturedTorsion<D>> torsion;  // ElasticBody.body_force_field
   };
 
   void forces(StepContext<D>& ctx);
@@ -198,7 +202,9 @@ class ElasticSolid final : public Unit<D> {
   double kinetic_energy(const ParticleStore<D>& s, const Comm& comm) const;
   // The farthest any constrained particle moves between t0 and t1 (all ranks).
   double constraint_travel(const ParticleStore<D>& s, const Comm& comm, double t0, double t1) const;
-  Vec<D> substep_acceleration(const ParticleStore<D>& s, std::size_t i, const Vec<D>& g) const;
+  // Internal force over mass, gravity g and the body's force field at time t.
+  Vec<D> substep_acceleration(const ParticleStore<D>& s, std::size_t i, const Vec<D>& g,
+                              double t) const;
   void substep_bound(const ParticleStore<D>& s, const Comm& comm, double t);
   void place_constrained(ParticleStore<D>& s, Column<Vec<D>>& v, double t);
   void hold_constrained(ParticleStore<D>& s);
@@ -380,6 +386,17 @@ ElasticSolid<D, K>::ElasticSolid(const UnitBuildContext<D>& b)
                                      : ElasticLawKind::kSaintVenantKirchhoff,
                                  mp.elastic_damping);
     sound_speed_ = std::max(sound_speed_, law.sound_speed);
+    if (e.body_force_field().has_manufactured_torsion()) {
+      const v1::ManufacturedTorsion& mt = e.body_force_field().manufactured_torsion();
+      ManufacturedTorsion<D> field;
+      field.center = elastic_vec<D>(mt.center());
+      field.inner = mt.inner_radius();
+      field.outer = mt.outer_radius();
+      field.angle = mt.angle();
+      field.ramp = mt.ramp_time();
+      field.mu_over_rho0 = law.mu / mp.rho0;
+      bodies_.back().torsion = field;
+    }
     if (mp.plastic) {
       J2Constants& j2 = j2_[static_cast<std::size_t>(m)];
       j2.bulk = law.bulk;
@@ -500,7 +517,9 @@ void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
     const double m = s.m[i];
     const Vec<D> force = internal_force_on(s, i) + fluid_force_[i];
     Vec<D> acc = force / m;
-    if (bodies_[body_[i]].gravity) acc += g;
+    const Body& body = bodies_[body_[i]];
+    if (body.gravity) acc += g;
+    if (body.torsion) acc += body.torsion->force(X_[i], ctx.t);
     s.a[i] += acc;  // forces accumulate (solver/seam/unit.h)
     if (reaction_ && constraint_[i] >= 0)
       (*reaction_)[i] = bodies_[body_[i]].gravity ? Vec<D>(-force - m * g) : Vec<D>(-force);
@@ -794,9 +813,11 @@ Vec<D> ElasticSolid<D, K>::internal_force_on(const ParticleStore<D>& s, std::siz
 
 template <int D, class K>
 Vec<D> ElasticSolid<D, K>::substep_acceleration(const ParticleStore<D>& s, std::size_t i,
-                                                const Vec<D>& g) const {
+                                                const Vec<D>& g, double t) const {
   Vec<D> acc = (*internal_)[i] / s.m[i];
-  if (bodies_[body_[i]].gravity) acc += g;
+  const Body& body = bodies_[body_[i]];
+  if (body.gravity) acc += g;
+  if (body.torsion) acc += body.torsion->force(X_[i], t);
   return acc;
 }
 
@@ -855,7 +876,7 @@ void ElasticSolid<D, K>::substeps(StepContext<D>& ctx) {
     const Vec<D> ga = BodyForce<D>::damping_factor(ta, gravity_ramp_) * gravity_;
     for (std::size_t i = 0; i < n; ++i) {
       if (kind[i] != Kind::kElastic || constraint_[i] >= 0) continue;
-      vs[i] += 0.5 * ds * substep_acceleration(s, i, ga);
+      vs[i] += 0.5 * ds * substep_acceleration(s, i, ga, ta);
       s.x[i] += ds * vs[i];
     }
     place_constrained(s, vs, tb);
@@ -864,7 +885,7 @@ void ElasticSolid<D, K>::substeps(StepContext<D>& ctx) {
     const Vec<D> gb = BodyForce<D>::damping_factor(tb, gravity_ramp_) * gravity_;
     for (std::size_t i = 0; i < n; ++i)
       if (kind[i] == Kind::kElastic && constraint_[i] < 0)
-        vs[i] += 0.5 * ds * substep_acceleration(s, i, gb);
+        vs[i] += 0.5 * ds * substep_acceleration(s, i, gb, tb);
   }
   // What the fluid sees until the next sub-steps: the solid's velocity now, before the closing
   // half kick of the fluid's force (the fluid's own velocities are likewise half-kicked when its
@@ -954,10 +975,11 @@ void ElasticSolid<D, K>::relax(StepContext<D>& ctx) {
   bool relaxed = false;
   while (tau < ctx.dt && !relaxed) {
     const double ds = std::min(substep_dt_, ctx.dt - tau);
-    Vec<D> g = BodyForce<D>::damping_factor(load_time(tau), gravity_ramp_) * gravity_;
+    double tl = load_time(tau);
+    Vec<D> g = BodyForce<D>::damping_factor(tl, gravity_ramp_) * gravity_;
     for (std::size_t i = 0; i < n; ++i) {
       if (kind[i] != Kind::kElastic || constraint_[i] >= 0) continue;
-      vs[i] += 0.5 * ds * substep_acceleration(s, i, g);
+      vs[i] += 0.5 * ds * substep_acceleration(s, i, g, tl);
       s.x[i] += ds * vs[i];
     }
     tau += ds;
@@ -970,10 +992,11 @@ void ElasticSolid<D, K>::relax(StepContext<D>& ctx) {
     // Kelvin-Voigt damping reads the neighbours' dF/dt: their damped velocities.
     if (viscous) ctx.halo.update(s, {&vs});
     internal_forces(ctx, vs.data());
-    g = BodyForce<D>::damping_factor(load_time(tau), gravity_ramp_) * gravity_;
+    tl = load_time(tau);
+    g = BodyForce<D>::damping_factor(tl, gravity_ramp_) * gravity_;
     for (std::size_t i = 0; i < n; ++i)
       if (kind[i] == Kind::kElastic && constraint_[i] < 0)
-        vs[i] += 0.5 * ds * substep_acceleration(s, i, g);
+        vs[i] += 0.5 * ds * substep_acceleration(s, i, g, tl);
     ++relax_steps_;
     const bool loaded = tau >= ramp;
     double energy = kinetic_energy(s, ctx.comm);
@@ -1013,7 +1036,8 @@ void ElasticSolid<D, K>::substep_bound(const ParticleStore<D>& s, const Comm& co
     if (s.kind[i] != Kind::kElastic) continue;
     v_max = std::max(v_max, (*solid_v_)[i].norm());
     if (constraint_[i] < 0)
-      a_max = std::max(a_max, (substep_acceleration(s, i, g) + (*held_force_)[i] / s.m[i]).norm());
+      a_max =
+          std::max(a_max, (substep_acceleration(s, i, g, t) + (*held_force_)[i] / s.m[i]).norm());
     if (laws_[s.material[i]].law == ElasticLawKind::kSaintVenantKirchhoff)
       strain_max =
           std::max(strain_max, 0.5 * (F_[i].transpose() * F_[i] - Mat<D>::Identity()).norm());

@@ -987,6 +987,25 @@ TEST(CaseValidation, PorousSolidFieldsAndLimits) {
       << dump(validate_case(unused));
 }
 
+TEST(CaseValidation, ManufacturedTorsionFieldsAndLimits) {
+  // ElasticBody.body_force_field.manufactured_torsion: a neo-Hookean ring in 2D, each limit by
+  // name.
+  const std::string plate = R"(elastic_bodies { name: "plate" material: "rubber"
+  shape { box { lo { x: 0.2 y: 1.6 } hi { x: 1.2 y: 1.8 } } }
+  constraints { region { box { lo { x: 0.2 y: 1.6 } hi { x: 0.4 y: 1.8 } } } }
+  body_force_field { manufactured_torsion { inner_radius: 0 outer_radius: 0 angle: 2
+                                            ramp_time: 0 } } }
+)";
+  const auto errs = validate_case(parse_case_text(std::string(kNoFluid) + kRubber + plate));
+  const std::string f = "elastic_bodies[0].body_force_field.manufactured_torsion";
+  EXPECT_TRUE(has_error(errs, f, "must have elastic_law NEO_HOOKEAN")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, f + ".inner_radius", "must be > 0 [m]")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, f + ".outer_radius", "must be > inner_radius (0); got 0"))
+      << dump(errs);
+  EXPECT_TRUE(has_error(errs, f + ".angle", "must be in (0, pi/2] [rad]; got 2")) << dump(errs);
+  EXPECT_TRUE(has_error(errs, f + ".ramp_time", "must be > 0 [s]")) << dump(errs);
+}
+
 TEST(CaseValidation, ElasticMaterialConstants) {
   // On a FLUID material each elastic field is refused by name.
   auto errs = errors_of(R"(materials { name: "oil" density: 900 eos { sound_speed: 10 }
