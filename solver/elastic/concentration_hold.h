@@ -7,10 +7,11 @@
 // the start and kept in the persistent column "concentration_hold" (0: none, k + 1: hold k).
 // While start_time <= t < end_time its concentration is set to the hold's value
 //   kAfterDrift  at t^{n+1}, before the ghosts are sent, so the step's diffusion sees it;
-//   kWallState   again after the diffusion update (solver/physics/scalar_transport.h, built
-//                before this unit, so it runs first in a phase), which moved it.
+//   kWallState   again after the diffusion's update (solver/elastic/porous_diffusion.h for
+//                porous bodies, solver/physics/scalar_transport.h for others; both built before
+//                this unit, so they run first in a phase), which moved it.
 // Under quasi-static loading the diffusion runs at kAfterDrift and this unit right after it,
-// before the bodies relax (built before the elastic solid).
+// before the bodies relax (the elastic solid runs after it).
 // Outside the window the particles diffuse like the rest of the body; the species mass series
 // then grows by what the holds put in.
 #include <cstdint>
