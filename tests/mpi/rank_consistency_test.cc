@@ -199,6 +199,18 @@ TEST(RankConsistency, FallingDiskWithContact) {
   auto c = test::load_case("falling_disk_2d");
   c.set_dx(0.0004);
   c.mutable_bodies(0)->mutable_shape()->mutable_ball()->mutable_center()->set_y(0.0016);
+  // A quarter of the tank's height (30 particle rows above the disk): the disk meets the floor
+  // the same way, with a quarter of the particles.
+  const double top = 0.015;
+  c.mutable_domain()->mutable_hi()->set_y(top + 0.001);
+  c.mutable_fluids(0)->mutable_shape()->mutable_box()->mutable_hi()->set_y(top);
+  c.mutable_walls(0)
+      ->mutable_shape()
+      ->mutable_shell()
+      ->mutable_inner()
+      ->mutable_box()
+      ->mutable_hi()
+      ->set_y(top);
   // Thrown at the floor so that it lands within the 600 steps (the acceleration limit on dt
   // keeps the steps short while fluid is squeezed out of the gap).
   c.mutable_bodies(0)->mutable_initial_velocity()->set_y(-0.12);
