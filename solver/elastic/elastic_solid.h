@@ -206,6 +206,11 @@ class ElasticSolid final : public Unit<D> {
   Vec<D> substep_acceleration(const ParticleStore<D>& s, std::size_t i, const Vec<D>& g,
                               double t) const;
   void substep_bound(const ParticleStore<D>& s, const Comm& comm, double t);
+  // |E| of particle i's Green strain when its law stiffens with strain (Saint Venant-
+  // Kirchhoff), else 0: the sound speed of stable_step grows with it.
+  double stiffening_strain(const ParticleStore<D>& s, std::size_t i) const;
+  // The solid's stable step from the maxima over its particles (reduced over all ranks).
+  double stable_step(const Comm& comm, double a_max, double v_max, double strain_max);
   void place_constrained(ParticleStore<D>& s, Column<Vec<D>>& v, double t);
   void hold_constrained(ParticleStore<D>& s);
   // P of owned particle i of a plastic material at F (the return mapping advances its state),
@@ -241,8 +246,7 @@ class ElasticSolid final : public Unit<D> {
   bool observed_found_ = false;
   std::vector<std::pair<ParticleId, std::size_t>> slots_;  // observed id -> series slot
   std::string failure_;
-  // |a|max, |v|max, and in substep_bound |E|max of Saint Venant-Kirchhoff particles (reduced in
-  // place).
+  // |a|max, |v|max and |E|max of Saint Venant-Kirchhoff particles (reduced in place).
   std::vector<double> maxima_ = std::vector<double>(3);
 
   ReferenceNeighbors<D> refs_;
@@ -511,7 +515,7 @@ void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
   stresses(ctx, v);
   // Pass 2: the momentum equation, the fluid's force and gravity.
   const Vec<D> g = BodyForce<D>::damping_factor(ctx.t, gravity_ramp_) * gravity_;
-  double a_max = 0, v_max = 0;
+  double a_max = 0, v_max = 0, strain_max = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (kind[i] != Kind::kElastic) continue;
     const double m = s.m[i];
@@ -525,16 +529,9 @@ void ElasticSolid<D, K>::forces(StepContext<D>& ctx) {
       (*reaction_)[i] = bodies_[body_[i]].gravity ? Vec<D>(-force - m * g) : Vec<D>(-force);
     v_max = std::max(v_max, v[i].norm());
     if (constraint_[i] < 0) a_max = std::max(a_max, s.a[i].norm());
+    strain_max = std::max(strain_max, stiffening_strain(s, i));
   }
-  // Thesis eq. 33 with the maxima of all ranks (exact, so the same on any rank count).
-  maxima_[0] = a_max;
-  maxima_[1] = v_max;
-  maxima_[2] = 0;
-  ctx.comm.max_inplace(maxima_);
-  max_dt_ = h_ / (maxima_[1] + sound_speed_);
-  if (maxima_[0] > 0) max_dt_ = std::min(max_dt_, std::sqrt(h_ / maxima_[0]));
-  max_dt_ *= cfl_ * kTimeStepFactor;
-  max_dt_ = std::min(max_dt_, cfl_ * damping_dt_);
+  max_dt_ = stable_step(ctx.comm, a_max, v_max, strain_max);
 }
 
 template <int D, class K>
@@ -1038,22 +1035,32 @@ void ElasticSolid<D, K>::substep_bound(const ParticleStore<D>& s, const Comm& co
     if (constraint_[i] < 0)
       a_max =
           std::max(a_max, (substep_acceleration(s, i, g, t) + (*held_force_)[i] / s.m[i]).norm());
-    if (laws_[s.material[i]].law == ElasticLawKind::kSaintVenantKirchhoff)
-      strain_max =
-          std::max(strain_max, 0.5 * (F_[i].transpose() * F_[i] - Mat<D>::Identity()).norm());
+    strain_max = std::max(strain_max, stiffening_strain(s, i));
   }
-  // Thesis eq. 33, as max_dt_ in forces(), with the sound speed of the stretched material: the
-  // tangent of Saint Venant-Kirchhoff, dP/dF = S + F (lambda tr dE + 2 mu dE), grows by about
-  // 1 + 3 |E| (|E| >= its largest principal strain). With the sound speed at rest, a block
-  // swollen by 8% (|E| = 0.12) never relaxed at cfl_factor above 0.9: its corners kept
-  // oscillating (docs/porous_media.md).
+  substep_dt_ = stable_step(comm, a_max, v_max, strain_max);
+}
+
+template <int D, class K>
+double ElasticSolid<D, K>::stiffening_strain(const ParticleStore<D>& s, std::size_t i) const {
+  if (laws_[s.material[i]].law != ElasticLawKind::kSaintVenantKirchhoff) return 0;
+  return 0.5 * (F_[i].transpose() * F_[i] - Mat<D>::Identity()).norm();
+}
+
+template <int D, class K>
+double ElasticSolid<D, K>::stable_step(const Comm& comm, double a_max, double v_max,
+                                       double strain_max) {
+  // Thesis eq. 33 with the maxima of all ranks (exact, so the same on any rank count) and the
+  // sound speed of the stretched material: the tangent of Saint Venant-Kirchhoff, dP/dF = S +
+  // F (lambda tr dE + 2 mu dE), grows by about 1 + 3 |E| (|E| >= its largest principal
+  // strain). With the sound speed at rest, a block swollen by 8% (|E| = 0.12) never relaxed at
+  // cfl_factor above 0.9: its corners kept oscillating (docs/porous_media.md).
   maxima_[0] = a_max;
   maxima_[1] = v_max;
   maxima_[2] = strain_max;
   comm.max_inplace(maxima_);
   double dt = h_ / (maxima_[1] + sound_speed_ * std::sqrt(1 + 3 * maxima_[2]));
   if (maxima_[0] > 0) dt = std::min(dt, std::sqrt(h_ / maxima_[0]));
-  substep_dt_ = std::min(cfl_ * kTimeStepFactor * dt, cfl_ * damping_dt_);
+  return std::min(cfl_ * kTimeStepFactor * dt, cfl_ * damping_dt_);
 }
 
 }  // namespace sph
