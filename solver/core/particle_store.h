@@ -12,6 +12,7 @@
 // Ghosts receive the `ghost` columns when they are built each step; a unit that needs a
 // column on ghosts later in the step (e.g. density after summation) refreshes it with
 // Halo::update() at that point. That is how a unit declares its ghost data dependencies.
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -51,6 +52,7 @@ class ColumnBase {
   virtual const std::byte* bytes() const = 0;
   // dst[i] = src[perm[i]] for i < perm.size(); the column is then perm.size() long.
   virtual void permute(const std::vector<std::uint32_t>& perm) = 0;
+  virtual void release_unused() = 0;  // capacity down to the size
 
  private:
   std::string name_, owner_;
@@ -73,24 +75,33 @@ class Column final : public ColumnBase {
   T& operator[](std::size_t i) { return v_[i]; }
   const T& operator[](std::size_t i) const { return v_[i]; }
   std::size_t size() const { return v_.size(); }
-  // New elements are zero (Eigen vectors are not zeroed by their default constructor).
+  // New elements are zero (Eigen vectors are not zeroed by their default constructor). Grows
+  // by an eighth beyond n, not by std::vector's doubling: ghosts and migrants change the
+  // size a little at each search, and doubling would reserve twice the particles on every
+  // rank that ever received one.
   void resize(std::size_t n) override {
     const std::size_t old = v_.size();
+    if (n > v_.capacity()) v_.reserve(n + n / 8);
     v_.resize(n);
     if (n > old) std::memset(static_cast<void*>(v_.data() + old), 0, (n - old) * sizeof(T));
   }
   std::size_t capacity_bytes() const override { return v_.capacity() * sizeof(T); }
+  void release_unused() override { v_.shrink_to_fit(); }
   std::byte* bytes() override { return reinterpret_cast<std::byte*>(v_.data()); }
   const std::byte* bytes() const override { return reinterpret_cast<const std::byte*>(v_.data()); }
+  // The permuted copy replaces the column and the old one is freed: one column's copy at a
+  // time, not a second copy of every column kept between reorderings.
   void permute(const std::vector<std::uint32_t>& perm) override {
-    scratch_.resize(perm.size());
-    for (std::size_t i = 0; i < perm.size(); ++i) scratch_[i] = v_[perm[i]];
-    v_.swap(scratch_);
+    std::vector<T> next;
+    next.reserve(std::max(v_.capacity(), perm.size()));  // the room resize() made for ghosts
+    next.resize(perm.size());
+    for (std::size_t i = 0; i < perm.size(); ++i) next[i] = v_[perm[i]];
+    v_.swap(next);
   }
   void fill(const T& value) { std::fill(v_.begin(), v_.end(), value); }
 
  private:
-  std::vector<T> v_, scratch_;
+  std::vector<T> v_;
 };
 
 template <int D>
@@ -132,6 +143,11 @@ class ParticleStore {
   void resize(std::size_t size, std::size_t owned);
   // Drops all ghosts.
   void drop_ghosts() { resize(owned_, owned_); }
+  // Every column's capacity down to its size: once the scene is built and on its ranks, so
+  // that the room its construction grew into is not kept for the run.
+  void release_unused() {
+    for (auto& c : columns_) c->release_unused();
+  }
   // Keeps the owned particles listed in `order` (in that order); ghosts are dropped.
   void reorder_owned(const std::vector<std::uint32_t>& order);
 

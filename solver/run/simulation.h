@@ -98,6 +98,10 @@ class Simulation {
     return comm_seconds_;
   }
   double imbalance() const { return imbalance_; }
+  // The result file's snapshot of the state now, and a checkpoint (returns its path): what
+  // run() writes at output times and checkpoint times (collective).
+  void write_snapshot();
+  std::string write_checkpoint_now();
   std::int64_t rebalances() const { return rebalances_; }  // since this process started
   std::int64_t global_particles() const { return global_particles_; }
   // Particles melted and solidified since the start (all ranks; 0 without phase transitions).
@@ -168,8 +172,6 @@ class Simulation {
   EndOfStep end_of_step_checks();
   void sample_series();  // record_series() and the next sample time
   void record_series();
-  void write_snapshot();
-  std::string write_checkpoint_now();
   void report_progress(bool force);
   std::map<std::string, std::string> metadata(const std::string& status) const;
   Vec<D> fluid_body_force(double t) const;

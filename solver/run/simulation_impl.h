@@ -147,6 +147,7 @@ void Simulation<D, K>::start() {
   if (opt_.resume_from.empty()) {
     build_scene();
     migrate();
+    s_.release_unused();
     global_particles_ = comm_.sum(static_cast<std::int64_t>(s_.owned()));
     if (bodies_) {
       std::vector<Vec<D>> v0;

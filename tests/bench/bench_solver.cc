@@ -10,6 +10,8 @@
 //                [--balance pairs|kind]   (work per particle from its pairs, the default, or
 //                fixed per kind) [--per-rank 1]   (each rank's particles, pairs and busy time)
 //                [--independent 1]   (each rank runs its own copy alone: the machine's ceiling)
+//                [--output K]   (then K snapshots and K checkpoints, each timed: their share of a
+//                run at cases/dambreak_2d's output.interval and sph-worker's checkpoint interval)
 //   bench_solver --case FILE [--steps S] [--skip T]   (any case; --skip advances T steps first,
 //                                                     e.g. to time bodies in contact)
 #include <mpi.h>
@@ -20,6 +22,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "case/estimate.h"
@@ -29,6 +32,21 @@
 #include "solver/run/simulation.h"
 
 namespace {
+
+// This process's resident set now and at its peak (/proc/self/status VmRSS, VmHWM), bytes.
+std::pair<double, double> resident_bytes() {
+  double rss = 0, peak = 0;
+  if (std::FILE* f = std::fopen("/proc/self/status", "r")) {
+    char line[256];
+    while (std::fgets(line, sizeof line, f)) {
+      double kb = 0;
+      if (std::sscanf(line, "VmRSS: %lf kB", &kb) == 1) rss = 1024 * kb;
+      if (std::sscanf(line, "VmHWM: %lf kB", &kb) == 1) peak = 1024 * kb;
+    }
+    std::fclose(f);
+  }
+  return {rss, peak};
+}
 
 sph::v1::Vec3 vec(double x, double y, double z) {
   sph::v1::Vec3 v;
@@ -75,10 +93,54 @@ sph::v1::Case dam_break(int dim, double n, bool wendland, double wall_thickness)
   return c;
 }
 
+// Writes `k` snapshots, then `k` checkpoints, as run() does at output and checkpoint times,
+// and prints each one's time (slowest rank) and its share of a run: a snapshot every
+// output.interval of simulated time (cases/dambreak_2d's 0.1 s, at this case's dt) and a
+// checkpoint every 300 s of wall time (sph-worker's --checkpoint-interval default).
+template <int D, class K>
+void time_outputs(sph::Simulation<D, K>& sim, int k, double ms_per_step, bool print,
+                  MPI_Comm comm) {
+  auto timed = [&](auto&& write) {
+    std::vector<double> t;
+    for (int i = 0; i < k; ++i) {
+      MPI_Barrier(comm);
+      const double t0 = MPI_Wtime();
+      write();
+      MPI_Barrier(comm);
+      t.push_back(MPI_Wtime() - t0);
+    }
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  const std::vector<double> snap = timed([&] { sim.write_snapshot(); });
+  std::string path;
+  const std::vector<double> ckpt = timed([&] { path = sim.write_checkpoint_now(); });
+  if (!print) return;
+  const double interval = 0.1, ckpt_every = 300;
+  const double steps_per_interval = interval / sim.dt();
+  const double run_s = steps_per_interval * ms_per_step * 1e-3;
+  const auto mb = [](const std::string& p) {
+    std::error_code ec;
+    const auto n = std::filesystem::file_size(p, ec);
+    return ec ? 0.0 : static_cast<double>(n) / (1 << 20);
+  };
+  std::printf(
+      "  snapshot           %10.3f s (median of %d; %.3f-%.3f); every %.2g s of simulated time "
+      "(%.0f steps of dt = %.3g, %.1f s): %.2f %% of the run\n",
+      snap[snap.size() / 2], k, snap.front(), snap.back(), interval, steps_per_interval, sim.dt(),
+      run_s, 100 * snap[snap.size() / 2] / (run_s + snap[snap.size() / 2]));
+  std::printf(
+      "  checkpoint         %10.3f s (median of %d; %.3f-%.3f), %.1f MiB; every %.0f s of wall "
+      "time: %.2f %% of the run\n",
+      ckpt[ckpt.size() / 2], k, ckpt.front(), ckpt.back(), mb(path), ckpt_every,
+      100 * ckpt[ckpt.size() / 2] / ckpt_every);
+  std::fflush(stdout);
+}
+
 // Returns this run's ms per step; prints the report if `print` (on the comm's rank 0).
 template <int D, class K>
 double bench(const sph::v1::Case& c, int steps, int skip, bool balance_by_kind, bool per_rank,
-             bool print, MPI_Comm comm) {
+             int outputs, bool print, MPI_Comm comm) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -89,6 +151,7 @@ double bench(const sph::v1::Case& c, int steps, int skip, bool balance_by_kind, 
   o.output_dir = sph::Comm(comm).broadcast(o.output_dir);  // rank 0's pid names the directory
   o.quiet = true;
   o.balance_by_kind = balance_by_kind;
+  const double rss_before = resident_bytes().first;  // MPI, libraries: not the solver's
   sph::Simulation<D, K> sim(c, sph::Comm(comm), o);
   const double t_setup = MPI_Wtime();
   sim.start();
@@ -119,6 +182,12 @@ double bench(const sph::v1::Case& c, int steps, int skip, bool balance_by_kind, 
     b = static_cast<std::size_t>(v);
     bytes += v;
   }
+  // What the solver holds in memory, counted by the operating system rather than by the
+  // columns' capacities: this process's resident set now and at its peak (the scene's
+  // construction included) less what it held before the simulation was built, over all ranks.
+  auto [rss, rss_peak] = resident_bytes();
+  double resident[2] = {rss - rss_before, rss_peak - rss_before};
+  MPI_Allreduce(MPI_IN_PLACE, resident, 2, MPI_DOUBLE, MPI_SUM, comm);
   double comm_max = comm_s;
   MPI_Allreduce(MPI_IN_PLACE, &comm_max, 1, MPI_DOUBLE, MPI_MAX, comm);
   // Busy time: the step less halo exchange and reductions (and the waits in them). Its
@@ -196,6 +265,10 @@ double bench(const sph::v1::Case& c, int steps, int skip, bool balance_by_kind, 
     for (const auto& [owner, b] : by_owner)
       if (b > 0) std::printf("    %-22s %6.0f B\n", owner.c_str(), static_cast<double>(b) / n);
     std::printf(
+        "  resident           %10.0f bytes/particle (peak %.0f; the processes' resident set "
+        "less what they held before the scene)\n",
+        resident[0] / n, resident[1] / n);
+    std::printf(
         "  communication      %10.1f %% of step time (rank 0), %.1f %% (rank that waits most)\n",
         100 * comm_s / wall, 100 * comm_max / wall);
     std::printf("  imbalance          %10.3f (work model: largest rank / mean; %lld rebalances)\n",
@@ -233,6 +306,7 @@ double bench(const sph::v1::Case& c, int steps, int skip, bool balance_by_kind, 
     }
     std::fflush(stdout);
   }
+  if (outputs > 0) time_outputs(sim, outputs, 1e3 * wall / steps, rank == 0 && print, comm);
   if (rank == 0) std::filesystem::remove_all(o.output_dir);
   return 1e3 * wall / steps;
 }
@@ -246,6 +320,7 @@ int main(int argc, char** argv) {
   double particles = 20000, wall_thickness = 0;
   bool balance_by_kind = false, per_rank = false, independent = false;
   bool wendland = false;
+  int outputs = 0;
   std::string pair_kernel;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
@@ -271,6 +346,8 @@ int main(int argc, char** argv) {
       per_rank = v == "1";
     else if (a == "--independent")
       independent = v == "1";
+    else if (a == "--output")
+      outputs = std::stoi(v);
   }
   sph::v1::Case c = case_file.empty() ? dam_break(dim, particles, wendland, wall_thickness)
                                       : sph::load_case_file(case_file);
@@ -297,14 +374,18 @@ int main(int argc, char** argv) {
   double ms = 0;
   if (dim == 2) {
     if (wendland)
-      ms = bench<2, sph::WendlandC2<2>>(c, steps, skip, balance_by_kind, per_rank, print, comm);
+      ms = bench<2, sph::WendlandC2<2>>(c, steps, skip, balance_by_kind, per_rank, outputs, print,
+                                        comm);
     else
-      ms = bench<2, sph::QuinticSpline<2>>(c, steps, skip, balance_by_kind, per_rank, print, comm);
+      ms = bench<2, sph::QuinticSpline<2>>(c, steps, skip, balance_by_kind, per_rank, outputs,
+                                           print, comm);
   } else {
     if (wendland)
-      ms = bench<3, sph::WendlandC2<3>>(c, steps, skip, balance_by_kind, per_rank, print, comm);
+      ms = bench<3, sph::WendlandC2<3>>(c, steps, skip, balance_by_kind, per_rank, outputs, print,
+                                        comm);
     else
-      ms = bench<3, sph::QuinticSpline<3>>(c, steps, skip, balance_by_kind, per_rank, print, comm);
+      ms = bench<3, sph::QuinticSpline<3>>(c, steps, skip, balance_by_kind, per_rank, outputs,
+                                           print, comm);
   }
   if (independent) {
     std::vector<double> all(static_cast<std::size_t>(world_size));
