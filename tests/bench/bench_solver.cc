@@ -33,19 +33,25 @@
 
 namespace {
 
-// This process's resident set now and at its peak (/proc/self/status VmRSS, VmHWM), bytes.
-std::pair<double, double> resident_bytes() {
-  double rss = 0, peak = 0;
+// This process's resident memory (/proc/self/status), bytes: the resident set now, at its
+// peak, and the part of it in shared memory (Open MPI's shared-memory transport maps its
+// peers' segments, which every process counts again).
+struct Resident {
+  double now = 0, peak = 0, shared = 0;
+};
+Resident resident_bytes() {
+  Resident r;
   if (std::FILE* f = std::fopen("/proc/self/status", "r")) {
     char line[256];
     while (std::fgets(line, sizeof line, f)) {
       double kb = 0;
-      if (std::sscanf(line, "VmRSS: %lf kB", &kb) == 1) rss = 1024 * kb;
-      if (std::sscanf(line, "VmHWM: %lf kB", &kb) == 1) peak = 1024 * kb;
+      if (std::sscanf(line, "VmRSS: %lf kB", &kb) == 1) r.now = 1024 * kb;
+      if (std::sscanf(line, "VmHWM: %lf kB", &kb) == 1) r.peak = 1024 * kb;
+      if (std::sscanf(line, "RssShmem: %lf kB", &kb) == 1) r.shared = 1024 * kb;
     }
     std::fclose(f);
   }
-  return {rss, peak};
+  return r;
 }
 
 sph::v1::Vec3 vec(double x, double y, double z) {
@@ -151,7 +157,7 @@ double bench(const sph::v1::Case& c, int steps, int skip, bool balance_by_kind, 
   o.output_dir = sph::Comm(comm).broadcast(o.output_dir);  // rank 0's pid names the directory
   o.quiet = true;
   o.balance_by_kind = balance_by_kind;
-  const double rss_before = resident_bytes().first;  // MPI, libraries: not the solver's
+  const Resident before = resident_bytes();  // MPI, libraries: not the solver's
   sph::Simulation<D, K> sim(c, sph::Comm(comm), o);
   const double t_setup = MPI_Wtime();
   sim.start();
@@ -185,9 +191,10 @@ double bench(const sph::v1::Case& c, int steps, int skip, bool balance_by_kind, 
   // What the solver holds in memory, counted by the operating system rather than by the
   // columns' capacities: this process's resident set now and at its peak (the scene's
   // construction included) less what it held before the simulation was built, over all ranks.
-  auto [rss, rss_peak] = resident_bytes();
-  double resident[2] = {rss - rss_before, rss_peak - rss_before};
-  MPI_Allreduce(MPI_IN_PLACE, resident, 2, MPI_DOUBLE, MPI_SUM, comm);
+  const Resident after = resident_bytes();
+  double resident[3] = {after.now - before.now, after.peak - before.now,
+                        after.shared - before.shared};
+  MPI_Allreduce(MPI_IN_PLACE, resident, 3, MPI_DOUBLE, MPI_SUM, comm);
   double comm_max = comm_s;
   MPI_Allreduce(MPI_IN_PLACE, &comm_max, 1, MPI_DOUBLE, MPI_MAX, comm);
   // Busy time: the step less halo exchange and reductions (and the waits in them). Its
@@ -265,9 +272,9 @@ double bench(const sph::v1::Case& c, int steps, int skip, bool balance_by_kind, 
     for (const auto& [owner, b] : by_owner)
       if (b > 0) std::printf("    %-22s %6.0f B\n", owner.c_str(), static_cast<double>(b) / n);
     std::printf(
-        "  resident           %10.0f bytes/particle (peak %.0f; the processes' resident set "
-        "less what they held before the scene)\n",
-        resident[0] / n, resident[1] / n);
+        "  resident           %10.0f bytes/particle (peak %.0f; of it in shared memory %.0f: the "
+        "processes' resident set less what they held before the scene)\n",
+        resident[0] / n, resident[1] / n, resident[2] / n);
     std::printf(
         "  communication      %10.1f %% of step time (rank 0), %.1f %% (rank that waits most)\n",
         100 * comm_s / wall, 100 * comm_max / wall);
