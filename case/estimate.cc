@@ -222,6 +222,9 @@ CaseEstimate estimate_case(const v1::Case& c) {
   std::vector<double> needs;
   for (const auto& r : regions) needs.push_back(r.need);
   const std::vector<double> share = share_work(needs, kEstimateWork);
+  // Particles of anisotropic bodies, each weighted by how much fewer lattice neighbours its
+  // stretched lattice puts within the search radius than dx spacing would.
+  double sparse_listed = 0;
   for (std::size_t k = 0; k < regions.size(); ++k) {
     const Region& r = regions[k];
     double n = 0;
@@ -234,6 +237,13 @@ CaseEstimate estimate_case(const v1::Case& c) {
     } else {
       // Not even one test: every lattice point of its bounds.
       n = lattice_points_in(r.shape->bounds().intersected(clip), r.spec);
+    }
+    if (r.kind == kElasticRegion && r.anisotropic) {
+      // Its lattice cells are stretch[a] dx long along the surface: the search sphere holds
+      // that many times fewer of them (and fewer still where the thickness cuts it off).
+      double cell = 1;
+      for (int a = 0; a < d; ++a) cell *= r.spec.stretch[a];
+      sparse_listed += n * (1.0 - 1.0 / cell);
     }
     if (r.kind == kElasticRegion)
       // What the body would take resolved isotropically (docs/asph.md: what ASPH saves).
@@ -306,8 +316,19 @@ CaseEstimate estimate_case(const v1::Case& c) {
                            : storage == v1::PAIR_KERNEL_TABLE ? 24.0
                                                               : 8.0;
   const double per_pair = per_index + 1.25 * per_value;
-  const double per_particle = (d == 2 ? 200.0 : 280.0) + per_pair * neighbours;
-  e.bytes = 1.15 * e.total() * per_particle;
+  // Elastic bodies (solver/elastic/) add their columns (reference position, deformation
+  // gradient, P B, displacement, ...: about 140 bytes in 2D, 240 in 3D) and their reference
+  // pairs, an index and V0 grad0 W each (24 or 32 bytes) for the neighbours within the
+  // kernel's support (as many on an anisotropic lattice: the ellipse is stretched as the
+  // lattice is), kept in a vector grown by doubling (half spare on average).
+  const double ks = kernel_support_radius(c) / dx;
+  const double reference_pairs =
+      d == 2 ? std::numbers::pi * ks * ks : 4.0 / 3.0 * std::numbers::pi * ks * ks * ks;
+  const double per_elastic =
+      (d == 2 ? 140.0 : 240.0) + 1.5 * (d == 2 ? 24.0 : 32.0) * reference_pairs;
+  e.bytes = 1.15 * (e.total() * (d == 2 ? 200.0 : 280.0) +
+                    (e.total() - sparse_listed) * per_pair * neighbours +
+                    e.elastic_particles * per_elastic);
   return e;
 }
 
